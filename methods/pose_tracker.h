@@ -1,0 +1,79 @@
+// The interface every tracker implements, and the registry that maps a method name to it.
+//
+// A tracker is given the stereo rig once, then one stereo frame of line observations at a
+// time, and answers with the current pose of the left camera in the world (the left camera at
+// the first frame) and a status. Trackers never return non-finite poses: when they cannot
+// measure a frame they say so in the status and keep predicting.
+//
+// Adding a tracker: one folder under methods/ with a library target, plus one line in
+// methods/registry.cc. The shared suite in tests/tracker_suite_test.cc and every experiment
+// pick it up from the registry.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "dataset/stereo_sequence.h"
+#include "geometry/rigid3.h"
+
+namespace slt {
+
+enum class TrackingStatus {
+  kTracking,       // the frame was measured and the pose updated
+  kReinitialized,  // the tracker (re)started here: new reference or recovery after a failure
+  kLost,           // too few usable features: the pose is a prediction only
+};
+
+inline const char* TrackingStatusName(TrackingStatus status) {
+  switch (status) {
+    case TrackingStatus::kTracking: return "tracking";
+    case TrackingStatus::kReinitialized: return "reinitialized";
+    case TrackingStatus::kLost: return "lost";
+  }
+  return "unknown";
+}
+
+struct TrackerOutput {
+  Rigid3d cam_from_world;  // left camera at this frame; world = left camera at the first frame
+  TrackingStatus status = TrackingStatus::kTracking;
+  int features_available = 0;  // features with a usable measurement this frame
+  int features_used = 0;       // features that passed the gate and entered the update
+};
+
+class PoseTracker {
+ public:
+  virtual ~PoseTracker() = default;
+
+  // Starts a new sequence with this rig (clears every previous state). Throws
+  // std::invalid_argument if the tracker cannot use the rig.
+  virtual void Reset(const StereoRig& rig) = 0;
+  // Processes the next frame. The first frame after Reset defines the world and returns the
+  // identity with status kReinitialized.
+  virtual TrackerOutput Track(const StereoFrame& frame) = 0;
+  // Options in effect, every default filled in (saved next to experiment results).
+  virtual nlohmann::json Options() const = 0;
+};
+
+struct TrackerInfo {
+  std::string name;         // method name used on command lines and in configs
+  std::string description;  // one line, with the paper it implements
+  // Creates the tracker from a JSON options object (missing keys keep their defaults).
+  // Throws ConfigError naming `where` and the key on invalid options.
+  std::function<std::unique_ptr<PoseTracker>(const nlohmann::json& options, const std::string& where)> create;
+  // True for trackers that only exist to test the plumbing (skipped by accuracy checks and
+  // default sweeps).
+  bool plumbing_only = false;
+};
+
+// Every registered tracker, in registration order.
+const std::vector<TrackerInfo>& RegisteredTrackers();
+std::vector<std::string> RegisteredTrackerNames(bool include_plumbing = true);
+// Throws std::invalid_argument listing the known names when `name` is not registered.
+const TrackerInfo& FindTracker(const std::string& name);
+std::unique_ptr<PoseTracker> CreateTracker(const std::string& name, const nlohmann::json& options = {},
+                                           const std::string& where = "tracker options");
+
+}  // namespace slt

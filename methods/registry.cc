@@ -1,0 +1,39 @@
+#include <sstream>
+#include <stdexcept>
+
+#include "methods/constant_pose/constant_pose_tracker.h"
+#include "methods/pose_tracker.h"
+
+namespace slt {
+
+const std::vector<TrackerInfo>& RegisteredTrackers() {
+  // One line per tracker.
+  static const std::vector<TrackerInfo> trackers = {
+      ConstantPoseTrackerInfo(),
+  };
+  return trackers;
+}
+
+std::vector<std::string> RegisteredTrackerNames(bool include_plumbing) {
+  std::vector<std::string> names;
+  for (const TrackerInfo& info : RegisteredTrackers()) {
+    if (include_plumbing || !info.plumbing_only) names.push_back(info.name);
+  }
+  return names;
+}
+
+const TrackerInfo& FindTracker(const std::string& name) {
+  for (const TrackerInfo& info : RegisteredTrackers()) {
+    if (info.name == name) return info;
+  }
+  std::ostringstream known;
+  for (const TrackerInfo& info : RegisteredTrackers()) known << " " << info.name;
+  throw std::invalid_argument("unknown method '" + name + "' (known:" + known.str() + ")");
+}
+
+std::unique_ptr<PoseTracker> CreateTracker(const std::string& name, const nlohmann::json& options,
+                                           const std::string& where) {
+  return FindTracker(name).create(options, where);
+}
+
+}  // namespace slt
