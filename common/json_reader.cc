@@ -39,6 +39,11 @@ void JsonReader::Fail(const std::string& key, const std::string& reason) const {
   throw ConfigError(where_ + ": key '" + KeyPath(key) + "': " + reason);
 }
 
+void ThrowOptionError(const std::string& where, const std::string& path, const std::string& key,
+                      const std::string& reason) {
+  throw ConfigError(where + ": key '" + (path.empty() ? key : path + "." + key) + "': " + reason);
+}
+
 nlohmann::json ReadJsonFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open file");

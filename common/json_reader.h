@@ -8,9 +8,12 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <cstdint>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace slt {
 
@@ -24,11 +27,32 @@ class JsonReader {
   // `where` names the source ("sim.json"), `path` the object's dotted key path ("" at the top).
   JsonReader(const nlohmann::json& object, std::string where, std::string path = "");
 
-  // Reads `key` into *value when present; keeps *value (the default) when absent.
+  // Reads `key` into *value when present; keeps *value (the default) when absent. Types are
+  // strict: a bool must be true/false, an integer must be a JSON integer in range (2.5 is not
+  // read as 2), a floating-point value any number.
   template <typename T>
   JsonReader& Get(const std::string& key, T* value) {
     const nlohmann::json* v = Find(key);
     if (v == nullptr) return *this;
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!v->is_boolean()) Fail(key, std::string("expected true or false, got ") + v->type_name());
+    } else if constexpr (std::is_integral_v<T>) {
+      const char* expected = std::is_unsigned_v<T> ? "expected a non-negative integer, got " : "expected an integer, got ";
+      if (!v->is_number_integer() || (std::is_unsigned_v<T> && !v->is_number_unsigned() && v->get<std::int64_t>() < 0)) {
+        Fail(key, expected + v->dump());
+      }
+      // Parsed documents hold non-negative integers as unsigned, built ones as signed.
+      const bool in_range =
+          v->is_number_unsigned()
+              ? v->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<T>::max())
+              : (v->get<std::int64_t>() >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
+                 (v->get<std::int64_t>() < 0 ||
+                  static_cast<std::uint64_t>(v->get<std::int64_t>()) <=
+                      static_cast<std::uint64_t>(std::numeric_limits<T>::max())));
+      if (!in_range) Fail(key, "integer out of range: " + v->dump());
+    } else if constexpr (std::is_floating_point_v<T>) {
+      if (!v->is_number()) Fail(key, std::string("expected a number, got ") + v->type_name());
+    }
     try {
       *value = v->get<T>();
     } catch (const nlohmann::json::exception& e) {
@@ -49,6 +73,7 @@ class JsonReader {
   [[noreturn]] void Fail(const std::string& key, const std::string& reason) const;
   std::string KeyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   const std::string& where() const { return where_; }
+  const std::string& path() const { return path_; }
 
  private:
   nlohmann::json object_;
@@ -56,6 +81,11 @@ class JsonReader {
   std::string path_;
   std::set<std::string> known_;
 };
+
+// For the Check() methods of option structs: throws ConfigError
+// "<where>: key '<path>.<key>': <reason>" (path may be empty).
+[[noreturn]] void ThrowOptionError(const std::string& where, const std::string& path,
+                                   const std::string& key, const std::string& reason);
 
 // Parses a JSON file; throws ConfigError naming the file on I/O or syntax errors.
 nlohmann::json ReadJsonFile(const std::string& path);

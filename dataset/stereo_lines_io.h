@@ -5,6 +5,11 @@
 //            "right": {"fx": .., "fy": .., "cx": .., "cy": ..},
 //            "right_from_left": {"R": [[..],[..],[..]], "t": [..]}},
 //    "frames": [{"time": 0.0, "left": [[id, u1, v1, u2, v2], ...], "right": [...]}, ...]}
+//
+// Units: pixels for intrinsics and segment endpoints (u right, v down, origin at the centre of
+// the top-left pixel), metres for t, seconds for times. X_right = R X_left + t.
+// Every key is required and unknown keys are rejected (a misspelt key must not silently turn
+// into a default). Ids are any integers; a line may be seen in one image only.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -18,9 +23,18 @@ namespace slt {
 StereoSequence ReadStereoLines(const std::string& path);
 StereoSequence StereoLinesFromJson(const nlohmann::json& document, const std::string& where);
 nlohmann::json StereoLinesToJson(const StereoSequence& sequence);
+// Checks the sequence first (CheckStereoSequence), so it never writes a file that
+// ReadStereoLines would reject; writes atomically, one observation per line.
 void WriteStereoLines(const std::string& path, const StereoSequence& sequence);
 
-// The rig block alone (also used inside simulation configs).
+// The rules a sequence must satisfy beyond the JSON structure: a usable rig
+// (StereoRig::Check), finite times and coordinates, non-decreasing times, segments of non-zero
+// length, no id twice in one image of one frame. Throws ConfigError naming `where` and the key
+// path the offending value has in the file ("frames[3].left[7]").
+void CheckStereoSequence(const StereoSequence& sequence, const std::string& where);
+
+// The rig block alone (also used inside simulation configs). Every field is required; `path`
+// is the block's key path in the errors ("rig").
 StereoRig StereoRigFromJson(const nlohmann::json& rig, const std::string& where, const std::string& path);
 nlohmann::json StereoRigToJson(const StereoRig& rig);
 

@@ -134,6 +134,15 @@ Matrix6d LeftJacobianSE3(const Vector6d& xi) {
   return out;
 }
 
+Matrix6d LeftJacobianSE3FirstOrder(const Vector6d& xi) {
+  Matrix6d out = Matrix6d::Identity();
+  const Eigen::Matrix3d half_w = 0.5 * Skew(xi.tail<3>());
+  out.topLeftCorner<3, 3>() += half_w;
+  out.bottomRightCorner<3, 3>() += half_w;
+  out.topRightCorner<3, 3>() = 0.5 * Skew(xi.head<3>());
+  return out;
+}
+
 Matrix6d RightJacobianSE3(const Vector6d& xi) { return LeftJacobianSE3(-xi); }
 
 Matrix6d LeftJacobianInverseSE3(const Vector6d& xi) {

@@ -16,6 +16,10 @@ namespace slt {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+// Jacobians with respect to a twist.
+using Matrix26d = Eigen::Matrix<double, 2, 6>;
+using Matrix36d = Eigen::Matrix<double, 3, 6>;
+using Matrix46d = Eigen::Matrix<double, 4, 6>;
 
 // [w]_x, so that Skew(w) * u = w.cross(u).
 Eigen::Matrix3d Skew(const Eigen::Vector3d& w);
@@ -49,5 +53,8 @@ Matrix6d Adjoint(const Rigid3d& transform);
 Matrix6d LeftJacobianSE3(const Vector6d& xi);
 Matrix6d RightJacobianSE3(const Vector6d& xi);
 Matrix6d LeftJacobianInverseSE3(const Vector6d& xi);
+// I + ad(xi) / 2: J_l to first order (error O(|xi|^2)), for per-frame twists in hot loops where
+// the Jacobian only sets a convergence rate or a covariance to that order.
+Matrix6d LeftJacobianSE3FirstOrder(const Vector6d& xi);
 
 }  // namespace slt

@@ -112,6 +112,17 @@ TEST(SE3, SE3LeftAndRightJacobiansMatchCentralDifferences) {
   }
 }
 
+TEST(SE3, FirstOrderLeftJacobianIsExactToFirstOrder) {
+  for (double scale : {1e-3, 1e-2}) {
+    Vector6d xi;
+    xi << 0.3, -0.2, 0.5, 0.4, -0.1, 0.2;
+    xi *= scale;
+    const double err = (LeftJacobianSE3FirstOrder(xi) - LeftJacobianSE3(xi)).norm();
+    EXPECT_LT(err, xi.squaredNorm());
+    EXPECT_GT(err, 0.0);
+  }
+}
+
 TEST(SE3, FirstOrderFormAgreesToFirstOrder) {
   Vector6d xi;
   xi << 0.01, -0.02, 0.005, 0.004, -0.01, 0.02;

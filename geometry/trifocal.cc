@@ -60,6 +60,11 @@ Eigen::Vector3d PerpendicularLineThroughPoint(const Eigen::Vector3d& epipolar_li
   return {-b, a, b * point.x() - a * point.y()};
 }
 
+double PlaneAngleSine(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
+  const Eigen::Vector3d na = a.head<3>(), nb = b.head<3>();
+  return na.cross(nb).norm() / (na.norm() * nb.norm());
+}
+
 Eigen::Vector3d LineFromPlanePair(const Eigen::Vector4d& plane2, const Eigen::Vector4d& plane3,
                                   Eigen::Matrix<double, 3, 4>* d_plane2,
                                   Eigen::Matrix<double, 3, 4>* d_plane3) {
@@ -154,6 +159,8 @@ void TransferCurrentToReference(const Rigid3d& right_from_left, const Rigid3d& c
                                  with_jacobians ? &a3 : nullptr);
   out->via_Tprime = LineFromPlanePair(p_left, p_right, with_jacobians ? &b2 : nullptr,
                                       with_jacobians ? &b3 : nullptr);
+  out->via_T_plane_sine = PlaneAngleSine(p_ref_right, p_left);
+  out->via_Tprime_plane_sine = PlaneAngleSine(p_left, p_right);
   if (!with_jacobians) return;
   const Eigen::Matrix4d to_ref = PlaneToReferenceMatrix(cam_from_ref);
   const Eigen::Matrix<double, 4, 3> d_pleft_d_line = to_ref.leftCols<3>();
@@ -184,6 +191,7 @@ void TransferReferenceToCurrent(const Rigid3d& right_from_left, const Rigid3d& c
   Eigen::Matrix<double, 3, 4> c2, c3, d2, d3;
   out->into_left = LineFromPlanePair(c_left, c_right, J ? &c2 : nullptr, J ? &c3 : nullptr);
   out->into_right = LineFromPlanePair(d_left, d_right, J ? &d2 : nullptr, J ? &d3 : nullptr);
+  out->plane_sine = PlaneAngleSine(p_left, p_right);
   if (!J) return;
   // E Exp(d) M = Exp(Ad_E d) E M: the right camera sees the perturbation through Ad_E.
   const Matrix6d ad_e = Adjoint(right_from_left);

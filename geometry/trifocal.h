@@ -25,9 +25,6 @@
 
 namespace slt {
 
-using Matrix46d = Eigen::Matrix<double, 4, 6>;
-using Matrix36d = Eigen::Matrix<double, 3, 6>;
-using Matrix26d = Eigen::Matrix<double, 2, 6>;
 
 struct TrifocalTensor {
   // slices[i](j, k) = T_i^{jk}.
@@ -53,6 +50,9 @@ Eigen::Vector3d PerpendicularLineThroughPoint(const Eigen::Vector3d& epipolar_li
 inline Eigen::Vector4d BackProjectLine(const Matrix34d& P, const Eigen::Vector3d& line) {
   return P.transpose() * line;
 }
+
+// Sine of the angle between the normals of two planes.
+double PlaneAngleSine(const Eigen::Vector4d& a, const Eigen::Vector4d& b);
 
 // The image in view [I | 0] of the intersection of two planes; the plane form of eq. 16.
 // Jacobians are with respect to each plane.
@@ -89,6 +89,10 @@ Eigen::Vector2d ProjectToNormalized(const Rigid3d& cam_from_ref, const Eigen::Ve
 struct CurrentToReferenceTransfer {
   Eigen::Vector3d via_T;
   Eigen::Vector3d via_Tprime;
+  // Sine of the angle between the two back-projected planes each transfer intersects: near
+  // zero the line lies in the epipolar plane of those two views and the transfer degenerates.
+  double via_T_plane_sine;
+  double via_Tprime_plane_sine;
   Matrix36d via_T_d_pose;
   Matrix36d via_Tprime_d_pose;
   Eigen::Matrix3d via_T_d_ref_right;
@@ -107,6 +111,7 @@ void TransferCurrentToReference(const Rigid3d& right_from_left, const Rigid3d& c
 struct ReferenceToCurrentTransfer {
   Eigen::Vector3d into_left;
   Eigen::Vector3d into_right;
+  double plane_sine;  // between the planes of the reference left and right lines
   Matrix36d into_left_d_pose;
   Matrix36d into_right_d_pose;
   Eigen::Matrix3d into_left_d_ref_left;

@@ -66,6 +66,9 @@ struct TrackerInfo {
   // True for trackers that only exist to test the plumbing (skipped by accuracy checks and
   // default sweeps).
   bool plumbing_only = false;
+  // The fewest stereo-matched lines the method can work with (the "minimum number" column of
+  // the paper's Table 1).
+  int minimum_lines = 2;
 };
 
 // Every registered tracker, in registration order.

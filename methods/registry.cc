@@ -3,12 +3,14 @@
 
 #include "methods/constant_pose/constant_pose_tracker.h"
 #include "methods/pose_tracker.h"
+#include "methods/trifocal_line_ekf/trifocal_line_ekf.h"
 
 namespace slt {
 
 const std::vector<TrackerInfo>& RegisteredTrackers() {
   // One line per tracker.
   static const std::vector<TrackerInfo> trackers = {
+      TrifocalLineEkfInfo(),
       ConstantPoseTrackerInfo(),
   };
   return trackers;

@@ -1,0 +1,119 @@
+#include "methods/stereo_ekf/least_squares.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+
+namespace slt {
+
+bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse) {
+  // a = L L^T.
+  double l[6][6] = {};
+  for (int j = 0; j < 6; ++j) {
+    double d = a(j, j);
+    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+    if (!(d > 0.0)) return false;
+    l[j][j] = std::sqrt(d);
+    const double inv = 1.0 / l[j][j];
+    for (int i = j + 1; i < 6; ++i) {
+      double s = a(i, j);
+      for (int k = 0; k < j; ++k) s -= l[i][k] * l[j][k];
+      l[i][j] = s * inv;
+    }
+  }
+  // M = L^-1 (lower triangular), then a^-1 = M^T M.
+  double m[6][6] = {};
+  for (int j = 0; j < 6; ++j) {
+    m[j][j] = 1.0 / l[j][j];
+    for (int i = j + 1; i < 6; ++i) {
+      double s = 0.0;
+      for (int k = j; k < i; ++k) s -= l[i][k] * m[k][j];
+      m[i][j] = s / l[i][i];
+    }
+  }
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      double s = 0.0;
+      for (int k = i; k < 6; ++k) s += m[k][i] * m[k][j];
+      (*inverse)(i, j) = s;
+      (*inverse)(j, i) = s;
+    }
+  }
+  return true;
+}
+
+bool CholeskyLower4(const Eigen::Matrix4d& a, Eigen::Matrix4d* lower) {
+  Eigen::Matrix4d& l = *lower;
+  l.setZero();
+  for (int j = 0; j < 4; ++j) {
+    double d = a(j, j);
+    for (int k = 0; k < j; ++k) d -= l(j, k) * l(j, k);
+    if (!(d > 0.0)) return false;
+    l(j, j) = std::sqrt(d);
+    for (int i = j + 1; i < 4; ++i) {
+      double s = a(i, j);
+      for (int k = 0; k < j; ++k) s -= l(i, k) * l(j, k);
+      l(i, j) = s / l(j, j);
+    }
+  }
+  return true;
+}
+
+bool WeightedFeature::FactorCovariance() { return CholeskyLower4(block.covariance, &sqrt_covariance); }
+
+void WeightedFeature::Whiten(const Eigen::Vector4d& residual, const Eigen::Matrix<double, 4, 6>& jacobian,
+                             Eigen::Vector4d* rw, Eigen::Matrix<double, 4, 6>* jw) const {
+  Eigen::Matrix<double, 4, 7> b;
+  b.col(0) = residual;
+  b.rightCols<6>() = jacobian;
+  ForwardSubstitute4(sqrt_covariance, &b);
+  *rw = b.col(0);
+  *jw = b.rightCols<6>();
+}
+
+double WeightedFeature::WhitenedSquaredNorm(const Eigen::Vector4d& residual) const {
+  Eigen::Matrix<double, 4, 1> b = residual;
+  ForwardSubstitute4(sqrt_covariance, &b);
+  return b.squaredNorm();
+}
+
+bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
+                  const Rigid3d& cam_from_ref, double* cost) {
+  FeatureBlock block;
+  if (!model.Evaluate(index, cam_from_ref, false, &block)) return false;
+  *cost = feature.WhitenedSquaredNorm(block.residual);
+  return std::isfinite(*cost);
+}
+
+bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
+                const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
+                Matrix6d* information) {
+  Rigid3d pose = *cam_from_ref;
+  FeatureBlock block;
+  NormalEquations ne;
+  for (int it = 0; it <= iterations; ++it) {
+    ne = NormalEquations();
+    for (int k = 0; k < count; ++k) {
+      const int i = indices[k];
+      if (!model.Evaluate(i, pose, false, &block)) return false;
+      Eigen::Vector4d rw;
+      Eigen::Matrix<double, 4, 6> jw;
+      features[i].Whiten(block.residual, block.jacobian, &rw, &jw);
+      ne.AddWhitened(rw, jw);
+    }
+    if (it == iterations) break;  // the last pass only evaluates the information at the solution
+    const Eigen::LDLT<Matrix6d> ldlt(ne.FullHessian());
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
+    const Vector6d step = -ldlt.solve(ne.gradient);
+    if (!step.allFinite() || step.tail<3>().norm() > 0.5) return false;  // diverging
+    pose = ExpSE3(step) * pose;
+    if (step.norm() < 1e-12) {
+      it = iterations - 1;  // converged: one more pass for the information
+    }
+  }
+  *cam_from_ref = pose;
+  *information = ne.FullHessian();
+  return information->allFinite();
+}
+
+}  // namespace slt

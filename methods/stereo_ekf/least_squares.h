@@ -1,0 +1,75 @@
+// Whitened residual blocks and Gauss-Newton on the pose, shared by the EKF update and the
+// robust (RANSAC) solve.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "geometry/se3.h"
+#include "methods/stereo_ekf/feature_model.h"
+
+namespace slt {
+
+// One feature of the current frame, evaluated at a linearisation point.
+struct WeightedFeature {
+  FeatureBlock block;
+  // L with R = L L^T: whitening is L^-1 (r, J), by forward substitution.
+  Eigen::Matrix4d sqrt_covariance;
+  double nis = 0.0;  // innovation r^T (J P J^T + R)^-1 r at the prediction
+  bool valid = false;
+  // Whitened residual and Jacobian at the last linearisation (first: the prediction), for the
+  // update and the per-feature posterior cost |rw + jw (d* - d_k)|^2.
+  Eigen::Vector4d whitened_residual;
+  Eigen::Matrix<double, 4, 6> whitened_jacobian;
+
+  // Sets sqrt_covariance from block.covariance; false if it is not positive definite.
+  bool FactorCovariance();
+  // Whitens a residual and Jacobian with this feature's covariance.
+  void Whiten(const Eigen::Vector4d& residual, const Eigen::Matrix<double, 4, 6>& jacobian,
+              Eigen::Vector4d* rw, Eigen::Matrix<double, 4, 6>* jw) const;
+  double WhitenedSquaredNorm(const Eigen::Vector4d& residual) const;
+};
+
+// Cholesky factor of a 4x4 symmetric positive-definite matrix, unrolled for the size; false if
+// not positive definite.
+bool CholeskyLower4(const Eigen::Matrix4d& a, Eigen::Matrix4d* lower);
+// Solves L X = B in place (L lower triangular 4x4, B 4xN).
+template <int N>
+void ForwardSubstitute4(const Eigen::Matrix4d& l, Eigen::Matrix<double, 4, N>* b) {
+  for (int i = 0; i < 4; ++i) {
+    for (int k = 0; k < i; ++k) b->row(i) -= l(i, k) * b->row(k);
+    b->row(i) /= l(i, i);
+  }
+}
+
+// Sums of J^T W^T W J, J^T W^T W r and r^T W^T W r over blocks.
+struct NormalEquations {
+  Matrix6d hessian = Matrix6d::Zero();
+  Vector6d gradient = Vector6d::Zero();
+  double cost = 0.0;
+
+  void AddWhitened(const Eigen::Vector4d& rw, const Eigen::Matrix<double, 4, 6>& jw) {
+    hessian.noalias() += jw.transpose().lazyProduct(jw);
+    gradient.noalias() += jw.transpose() * rw;
+    cost += rw.squaredNorm();
+  }
+  const Matrix6d& FullHessian() const { return hessian; }
+};
+
+// Inverse of a symmetric positive-definite 6x6 matrix through its Cholesky factor, unrolled
+// for the fixed size (Eigen's LDLT/LLT solve with a matrix right-hand side takes a generic
+// blocked path that costs several times more at this size). False if not positive definite.
+bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse);
+
+// Squared whitened residual of feature `index` at `cam_from_ref` (false if degenerate there).
+bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
+                  const Rigid3d& cam_from_ref, double* cost);
+
+// Gauss-Newton without prior on the features `indices`, starting at *cam_from_ref, whitened with
+// each feature's covariance. On success returns true and sets *cam_from_ref and *information (the
+// Hessian J^T R^-1 J at the solution).
+bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
+                const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
+                Matrix6d* information);
+
+}  // namespace slt

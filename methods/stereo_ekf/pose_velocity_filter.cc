@@ -1,0 +1,84 @@
+#include "methods/stereo_ekf/pose_velocity_filter.h"
+
+#include <Eigen/Cholesky>
+
+namespace slt {
+
+Matrix6d PoseVelocityFilter::InitialVelocityCovariance() const {
+  Vector6d sigma;
+  sigma << Eigen::Vector3d::Constant(options_.initial_velocity_sigma_m),
+      Eigen::Vector3d::Constant(options_.initial_velocity_sigma_rad);
+  return sigma.array().square().matrix().asDiagonal();
+}
+
+void PoseVelocityFilter::Reset(const StereoEkfOptions& options) {
+  options_ = options;
+  cam_from_ref_ = Rigid3d();
+  previous_cam_from_ref_ = Rigid3d();
+  velocity_.setZero();
+  covariance_.setZero();
+  covariance_.bottomRightCorner<6, 6>() = InitialVelocityCovariance();
+}
+
+void PoseVelocityFilter::Predict() {
+  if (options_.state == "velocity") {
+    // The paper's filter: M_{t-1} is exact, only the velocity is uncertain.
+    covariance_.topRows<6>().setZero();
+    covariance_.leftCols<6>().setZero();
+  }
+  // Velocity random walk first: the new velocity is the one integrated into the pose.
+  const double qm = options_.accel_sigma_m * options_.accel_sigma_m;
+  const double qr = options_.accel_sigma_rad * options_.accel_sigma_rad;
+  for (int i = 6; i < 9; ++i) covariance_(i, i) += qm;
+  for (int i = 9; i < 12; ++i) covariance_(i, i) += qr;
+
+  const Rigid3d step = options_.integration == "first_order" ? FirstOrderSE3(velocity_) : ExpSE3(velocity_);
+  // F = [[Ad(step), J_l(xi)], [0, I]]; P <- F P F^T, written blockwise.
+  const Matrix6d ad = Adjoint(step);
+  // J_l to first order: per-frame twists are small and it only enters the covariance.
+  const Matrix6d jl = LeftJacobianSE3FirstOrder(velocity_);
+  const Matrix6d Ppp = covariance_.topLeftCorner<6, 6>();
+  const Matrix6d Ppv = covariance_.topRightCorner<6, 6>();
+  const Matrix6d Pvv = covariance_.bottomRightCorner<6, 6>();
+  const Matrix6d new_pv = ad * Ppv + jl * Pvv;
+  const Matrix6d cross = ad * Ppv * jl.transpose();
+  const Matrix6d new_pp =
+      ad * Ppp * ad.transpose() + cross + cross.transpose() + jl * Pvv * jl.transpose();
+  covariance_.topLeftCorner<6, 6>() = 0.5 * (new_pp + new_pp.transpose());
+  covariance_.topRightCorner<6, 6>() = new_pv;
+  covariance_.bottomLeftCorner<6, 6>() = new_pv.transpose();
+
+  previous_cam_from_ref_ = cam_from_ref_;
+  cam_from_ref_ = step * cam_from_ref_;
+}
+
+void PoseVelocityFilter::Correct(const Vector6d& delta, const Matrix6d& posterior_pose_covariance,
+                                 const Matrix6d& prior_pose_information) {
+  const Matrix6d Ppp = covariance_.topLeftCorner<6, 6>();
+  const Matrix6d G = covariance_.bottomLeftCorner<6, 6>() * prior_pose_information;
+  velocity_ += G * delta;
+  Matrix6d Pvv = covariance_.bottomRightCorner<6, 6>() - G * (Ppp - posterior_pose_covariance) * G.transpose();
+  const Matrix6d new_pvp = G * posterior_pose_covariance;
+  covariance_.topLeftCorner<6, 6>() = 0.5 * (posterior_pose_covariance + posterior_pose_covariance.transpose());
+  covariance_.bottomLeftCorner<6, 6>() = new_pvp;
+  covariance_.topRightCorner<6, 6>() = new_pvp.transpose();
+  covariance_.bottomRightCorner<6, 6>() = 0.5 * (Pvv + Pvv.transpose());
+  cam_from_ref_ = ExpSE3(delta) * cam_from_ref_;
+}
+
+void PoseVelocityFilter::Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance) {
+  cam_from_ref_ = cam_from_ref;
+  velocity_ = LogSE3(cam_from_ref * previous_cam_from_ref_.Inverse());
+  covariance_.setZero();
+  covariance_.topLeftCorner<6, 6>() = pose_covariance;
+  covariance_.bottomRightCorner<6, 6>() = InitialVelocityCovariance();
+}
+
+void PoseVelocityFilter::Rebase() {
+  cam_from_ref_ = Rigid3d();
+  previous_cam_from_ref_ = Rigid3d();
+  covariance_.topRows<6>().setZero();
+  covariance_.leftCols<6>().setZero();
+}
+
+}  // namespace slt

@@ -1,0 +1,57 @@
+// The state and covariance bookkeeping of the stereo EKF: the pose of the current left camera
+// relative to the reference pair, M_t = cam_from_ref, and the body-frame velocity xi (a twist
+// per frame), with a 12-D error state e = [d; dv]:
+//   true M_t  = Exp(d) M_t,     true xi = xi + dv.
+// Motion model (eq. 11 and 18, body frame: docs/derivations.md):
+//   xi_t = xi_{t-1} + eta,  eta ~ N(0, Q);    M_t = Exp(xi_t) M_{t-1}
+// whose error propagation is e_t = F e_{t-1} with
+//   F = [[Ad(Exp(xi)), J_l(xi)], [0, I]],    P_t|t-1 = F (P + diag(0, Q)) F^T.
+// With state = "velocity" (the paper's filter, eq. 10), the pose block is reset to zero before
+// every prediction: M_{t-1} is taken as exact and only the velocity is estimated.
+//
+// Measurements inform the pose only (their Jacobian is [H 0]), so an update is a MAP solve on
+// the pose with the pose-marginal prior (done by the tracker), followed here by the Gaussian
+// conditional for the velocity: with G = P_vp P_pp^-1,
+//   dv = G d,   P_vv+ = P_vv - G (P_pp - P_pp+) G^T,   P_vp+ = G P_pp+.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "geometry/se3.h"
+#include "methods/stereo_ekf/stereo_ekf_options.h"
+
+namespace slt {
+
+class PoseVelocityFilter {
+ public:
+  using Matrix12d = Eigen::Matrix<double, 12, 12>;
+
+  void Reset(const StereoEkfOptions& options);
+  void Predict();
+  // `prior_pose_information` is P_pp^-1 at the prediction (the caller has it already).
+  void Correct(const Vector6d& delta, const Matrix6d& posterior_pose_covariance,
+               const Matrix6d& prior_pose_information);
+  // Replaces pose and velocity after a detected failure: the pose from a measurement-only
+  // solve with its covariance, the velocity re-derived from the previous pose with the initial
+  // (wide) velocity prior.
+  void Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance);
+  // The current camera becomes the reference: the relative pose is exactly the identity.
+  void Rebase();
+
+  const Rigid3d& cam_from_ref() const { return cam_from_ref_; }
+  const Rigid3d& previous_cam_from_ref() const { return previous_cam_from_ref_; }
+  const Vector6d& velocity() const { return velocity_; }
+  Matrix6d PoseCovariance() const { return covariance_.topLeftCorner<6, 6>(); }
+  const Matrix12d& covariance() const { return covariance_; }
+
+ private:
+  Matrix6d InitialVelocityCovariance() const;
+
+  StereoEkfOptions options_;
+  Rigid3d cam_from_ref_;
+  Rigid3d previous_cam_from_ref_;
+  Vector6d velocity_ = Vector6d::Zero();
+  Matrix12d covariance_ = Matrix12d::Zero();
+};
+
+}  // namespace slt

@@ -1,0 +1,87 @@
+#include "methods/stereo_ekf/robust_pose_solver.h"
+
+#include <cmath>
+#include <limits>
+
+namespace slt {
+
+double RobustPoseSolver::Score(const FeatureModel& model, const std::vector<WeightedFeature>& features,
+                               const std::vector<int>& valid, const Rigid3d& pose, double gate,
+                               std::vector<int>* inliers) const {
+  inliers->clear();
+  double score = 0.0;
+  for (int i : valid) {
+    double cost;
+    if (!WhitenedCost(model, features[i], i, pose, &cost) || cost >= gate) {
+      score += gate;
+      continue;
+    }
+    score += cost;
+    inliers->push_back(i);
+  }
+  return score;
+}
+
+void RobustPoseSolver::Solve(const FeatureModel& model, const std::vector<WeightedFeature>& features,
+                             const std::vector<int>& valid, const std::vector<Rigid3d>& starts, double gate,
+                             int max_iterations, double confidence, RobustSolveResult* result) {
+  result->success = false;
+  result->hypotheses = 0;
+  result->inliers.clear();
+  const int n = static_cast<int>(valid.size());
+  if (n < 2) return;
+
+  double best_score = std::numeric_limits<double>::infinity();
+  Rigid3d best_pose;
+  auto consider = [&](const Rigid3d& pose) {
+    ++result->hypotheses;
+    const double score = Score(model, features, valid, pose, gate, &scratch_inliers_);
+    if (score < best_score) {
+      best_score = score;
+      best_pose = pose;
+      result->inliers.swap(scratch_inliers_);
+    }
+  };
+  for (const Rigid3d& start : starts) consider(start);
+
+  std::uniform_int_distribution<int> pick(0, n - 1);
+  int needed = max_iterations;
+  Matrix6d information;
+  for (int iteration = 0; iteration < needed && iteration < max_iterations; ++iteration) {
+    int sample[2] = {valid[pick(rng_)], valid[pick(rng_)]};
+    while (sample[1] == sample[0]) sample[1] = valid[pick(rng_)];
+    for (const Rigid3d& start : starts) {
+      Rigid3d pose = start;
+      if (RefinePose(model, features, sample, 2, 6, &pose, &information)) consider(pose);
+    }
+    // Adaptive stopping: enough samples to draw an all-inlier pair with `confidence`.
+    const double w = static_cast<double>(result->inliers.size()) / n;
+    const double p_good = w * w;
+    if (p_good >= 1.0 - 1e-12) break;
+    if (p_good > 0.0) {
+      needed = static_cast<int>(std::ceil(std::log(1.0 - confidence) / std::log(1.0 - p_good)));
+    }
+  }
+  if (result->inliers.size() < 2) return;
+
+  // Refine on the consensus set, then re-collect the inliers at the refined pose once.
+  Rigid3d pose = best_pose;
+  if (!RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 5, &pose,
+                  &information)) {
+    pose = best_pose;
+  }
+  Score(model, features, valid, pose, gate, &scratch_inliers_);
+  if (scratch_inliers_.size() >= result->inliers.size()) {
+    result->inliers.swap(scratch_inliers_);
+    best_pose = pose;
+  }
+  if (!RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 5,
+                  &best_pose, &information)) {
+    return;
+  }
+  result->cam_from_ref = best_pose;
+  result->information = information;
+  result->success = true;
+}
+
+}  // namespace slt

@@ -1,0 +1,91 @@
+// Options of the stereo EKF shared by the trifocal-line and point trackers: state, motion
+// model, update, gate, robustness and feature replacement. Every field has a default; JSON
+// keys are the field names.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "common/json_reader.h"
+
+namespace slt {
+
+struct StereoEkfOptions {
+  // "velocity": the paper's state, the six velocities of the twist (eq. 10); the pose at t-1
+  //   is taken as exact and the whole correction goes into the velocity.
+  // "pose_velocity": pose and velocity (12-D error state), so that a pose correction does not
+  //   corrupt the velocity used by the next prediction.
+  std::string state = "pose_velocity";
+  // "exp": M_t = Exp(xi) M_{t-1} (eq. 11); "first_order": M_t = (I + Hat(xi)) M_{t-1} (eq. 12),
+  // re-orthonormalised.
+  std::string integration = "exp";
+
+  // Constant-velocity model (eq. 18): per-frame velocity change ~ N(0, diag(sigma^2)).
+  double accel_sigma_m = 2e-3;     // m / frame^2
+  double accel_sigma_rad = 4e-3;   // rad / frame^2
+  // Velocity prior at the start (the velocity is unknown; the paper's protocol moves up to
+  // 0.010 m and 1.2 deg per frame).
+  double initial_velocity_sigma_m = 0.02;
+  double initial_velocity_sigma_rad = 0.035;
+
+  // Update: 1 = the paper's single EKF update (eq. 19); more = iterated EKF (Gauss-Newton on
+  // the MAP cost), stopping early when the step is below iteration_tolerance.
+  int max_iterations = 2;
+  double iteration_tolerance = 1e-9;
+
+  // Validation gate (eq. 20) r^T S^-1 r < g per feature. g is the chi-square quantile of
+  // gate_probability with 4 degrees of freedom, unless gate_threshold > 0 gives g directly
+  // (the paper uses g = 0.2 with an unstated scaling of R).
+  double gate_probability = 0.999;
+  double gate_threshold = 0.0;
+
+  // Measurement-noise scale: the model's covariances R are multiplied by s^2, estimated online
+  // from the posterior residuals of the features in the gate (s^2 <- s^2 (1 - a + a rho), rho
+  // their median cost over its expected value; a fifth of the rate when rho > 1), clamped to
+  // [min_noise_scale, max_noise_scale]^2. The
+  // nominal noise (e.g. endpoint_sigma_px) then only sets the start; noise-free data drive s to
+  // its minimum and the tracker becomes exact.
+  bool adaptive_noise = true;
+  double noise_adaptation_rate = 0.3;
+  double min_noise_scale = 1e-3;
+  double max_noise_scale = 4.0;
+
+  // Robustness: a RANSAC over feature pairs seeds the update on the first robust_start_frames
+  // frames after the start (weak velocity prior) and whenever the filter looks unhealthy: fewer
+  // features inside the gate than min_inlier_fraction of the previous frame's, or a posterior
+  // cost per residual scalar above max_normalized_cost (about 1 when the noise model is right).
+  // If the robust solve then finds more inliers than the gate and disagrees with the prediction,
+  // the filter is re-seeded from it.
+  bool robust = true;
+  int robust_start_frames = 3;
+  double min_inlier_fraction = 0.5;
+  double max_normalized_cost = 2.0;
+  int ransac_max_iterations = 200;
+  double ransac_confidence = 0.999;
+  std::uint64_t seed = 1;
+
+  // Feature replacement (Sec. 3.3): when fewer than min_features (the paper's k_c) features of
+  // the reference remain, or fewer than min_feature_fraction of those the reference started
+  // with, the current pair becomes the new reference.
+  int min_features = 6;
+  double min_feature_fraction = 0.5;
+  // What counts as remaining: "measurable" (matched to the reference and not degenerate) or
+  // "gated" (also inside the validation gate this frame: the paper's reading, where lines
+  // dropped by eq. 20 are not available).
+  std::string count_features = "measurable";
+
+  double GateThreshold() const;  // the g in use
+  // Throws ConfigError "<where>: key '<path>.<field>': ...".
+  void Check(const std::string& where = "stereo EKF options", const std::string& path = "") const;
+};
+
+// Reads the fields present in `reader` (keeps defaults for the others).
+void ReadStereoEkfOptions(JsonReader& reader, StereoEkfOptions* options);
+nlohmann::json StereoEkfOptionsToJson(const StereoEkfOptions& options);
+
+// Quantile of the chi-square distribution with `dof` degrees of freedom (Wilson-Hilferty with
+// a Newton polish; accurate to 1e-6 relative for dof >= 1 and p in [0.5, 1 - 1e-9]).
+double ChiSquareQuantile(double probability, int dof);
+
+}  // namespace slt

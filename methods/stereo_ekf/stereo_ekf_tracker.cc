@@ -1,0 +1,254 @@
+#include "methods/stereo_ekf/stereo_ekf_tracker.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+namespace slt {
+
+StereoEkfTracker::StereoEkfTracker(const StereoEkfOptions& options, std::unique_ptr<FeatureModel> model,
+                                   nlohmann::json model_options)
+    : options_(options), model_(std::move(model)), model_options_(std::move(model_options)) {
+  options_.Check();
+  gate_ = options_.GateThreshold();
+  reseed_gate_ = ChiSquareQuantile(0.999, 6);
+}
+
+nlohmann::json StereoEkfTracker::Options() const {
+  return {{"filter", StereoEkfOptionsToJson(options_)}, {"measurement", model_options_}};
+}
+
+void StereoEkfTracker::Reset(const StereoRig& rig) {
+  rig.Check();
+  model_->Reset(rig);
+  started_ = false;
+  counters_ = Counters();
+  robust_solver_.Reset(options_.seed);
+}
+
+void StereoEkfTracker::Start(const StereoFrame& frame) {
+  started_ = true;
+  healthy_ = true;
+  frames_since_start_ = 0;
+  previous_inliers_ = 0;
+  noise_scale_sq_ = 1.0;
+  ref_from_world_ = Rigid3d();
+  filter_.Reset(options_);
+  reference_features_ = model_->SetReference(frame);
+}
+
+void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
+  const int n = model_->NumFeatures();
+  if (static_cast<int>(features_.size()) < n) features_.resize(n);
+  valid_.clear();
+  inliers_.clear();
+  const Matrix6d Ppp = filter_.PoseCovariance();
+  for (int i = 0; i < n; ++i) {
+    WeightedFeature& f = features_[i];
+    f.valid = model_->Evaluate(i, predicted, true, &f.block) && f.block.residual.allFinite() &&
+              f.block.jacobian.allFinite();
+    if (!f.valid) continue;
+    f.block.covariance *= noise_scale_sq_;
+    if (!(f.valid = f.FactorCovariance())) continue;
+    f.Whiten(f.block.residual, f.block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
+    valid_.push_back(i);
+    // Eq. 20 with S = J P J^T + R.
+    Eigen::Matrix4d S = f.block.covariance;
+    S.noalias() += f.block.jacobian * Ppp.lazyProduct(f.block.jacobian.transpose());
+    Eigen::Matrix4d s_lower;
+    f.nis = std::numeric_limits<double>::infinity();
+    if (CholeskyLower4(S, &s_lower)) {
+      Eigen::Matrix<double, 4, 1> r = f.block.residual;
+      ForwardSubstitute4(s_lower, &r);
+      f.nis = r.squaredNorm();
+    }
+    if (f.nis < gate_) inliers_.push_back(i);
+  }
+}
+
+double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization) {
+  const Rigid3d predicted = filter_.cam_from_ref();
+  Matrix6d prior_information;
+  if (!InvertSpd6(filter_.PoseCovariance(), &prior_information)) {
+    prior_information = filter_.PoseCovariance().ldlt().solve(Matrix6d::Identity());
+  }
+  Vector6d delta = blocks_at_linearization ? Vector6d::Zero() : LogSE3(linearization * predicted.Inverse());
+  NormalEquations ne;
+  Vector6d delta_k = delta;
+  Matrix6d posterior = filter_.PoseCovariance();  // kept if the update cannot be solved
+  FeatureBlock block;
+  for (int k = 0; k < options_.max_iterations; ++k) {
+    delta_k = delta;
+    const Rigid3d pose = ExpSE3(delta) * predicted;
+    // The model's Jacobian is taken at the iterate, with respect to a perturbation there; using
+    // it for d (instead of J J_l(d_k)) changes the convergence rate only: at the fixed point the
+    // two differ by O(|d|^2).
+    ne = NormalEquations();
+    for (int i : inliers_) {
+      WeightedFeature& f = features_[i];
+      if (!(k == 0 && blocks_at_linearization)) {
+        if (!model_->Evaluate(i, pose, false, &block)) {
+          // Degenerate at this pose: drop it from this iteration's sums.
+          f.whitened_residual.setZero();
+          f.whitened_jacobian.setZero();
+          continue;
+        }
+        f.Whiten(block.residual, block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
+      }
+      ne.AddWhitened(f.whitened_residual, f.whitened_jacobian);
+    }
+    // Normal equations of the MAP cost linearised at delta_k (docs/derivations.md):
+    // (H + P^-1) delta = H delta_k - g.
+    const Matrix6d& H = ne.FullHessian();
+    if (!InvertSpd6(H + prior_information, &posterior)) break;
+    Vector6d next = posterior * (H * delta_k - ne.gradient);
+    if (!next.allFinite()) break;
+    // Re-gate at the solution: a feature that passed the gate at the prediction but whose
+    // linearised posterior cost exceeds it is an outlier the prior let through; drop it and
+    // re-solve on the same linearisation (no new evaluation).
+    if (RemovePosteriorOutliers(next - delta_k)) {
+      ne = NormalEquations();
+      for (int i : inliers_) ne.AddWhitened(features_[i].whitened_residual, features_[i].whitened_jacobian);
+      if (inliers_.size() < 2 || !InvertSpd6(ne.FullHessian() + prior_information, &posterior)) break;
+      next = posterior * (ne.FullHessian() * delta_k - ne.gradient);
+      if (!next.allFinite()) break;
+    }
+    delta = next;
+    if ((delta - delta_k).norm() < options_.iteration_tolerance) break;
+  }
+  filter_.Correct(delta, posterior, prior_information);
+  // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
+  const Vector6d step = delta - delta_k;
+  posterior_costs_.clear();
+  double total = 0.0;
+  for (int i : inliers_) {
+    const WeightedFeature& f = features_[i];
+    const double q = (f.whitened_residual + f.whitened_jacobian * step).squaredNorm();
+    posterior_costs_.push_back(q);
+    total += q;
+  }
+  return total;
+}
+
+bool StereoEkfTracker::RemovePosteriorOutliers(const Vector6d& step) {
+  const size_t before = inliers_.size();
+  inliers_.erase(std::remove_if(inliers_.begin(), inliers_.end(),
+                                [&](int i) {
+                                  const WeightedFeature& f = features_[i];
+                                  return (f.whitened_residual + f.whitened_jacobian * step).squaredNorm() >= gate_;
+                                }),
+                 inliers_.end());
+  return inliers_.size() != before;
+}
+
+void StereoEkfTracker::AdaptNoiseScale() {
+  // Robust scale: the median per-feature posterior cost over the median of chi-square(4)
+  // (3.357), corrected for the six degrees of freedom the pose absorbs. The median ignores the
+  // few outliers that slip through the gate. The scale drops fast (noise-free data) and rises
+  // slowly, so that a filter going wrong is not hidden by an inflated noise model.
+  const int n = static_cast<int>(posterior_costs_.size());
+  if (!options_.adaptive_noise || n < 3) return;
+  auto middle = posterior_costs_.begin() + n / 2;
+  std::nth_element(posterior_costs_.begin(), middle, posterior_costs_.end());
+  const double dof_correction = (4.0 * n) / std::max(1.0, 4.0 * n - 6.0);
+  const double ratio = *middle * dof_correction / 3.357;
+  const double a = ratio < 1.0 ? options_.noise_adaptation_rate : 0.2 * options_.noise_adaptation_rate;
+  noise_scale_sq_ *= (1.0 - a) + a * ratio;
+  const double lo = options_.min_noise_scale * options_.min_noise_scale;
+  const double hi = options_.max_noise_scale * options_.max_noise_scale;
+  noise_scale_sq_ = std::min(hi, std::max(lo, noise_scale_sq_));
+}
+
+bool StereoEkfTracker::MaybeRebootstrap(const StereoFrame& frame, int used) {
+  const int remaining = options_.count_features == "gated" ? used : static_cast<int>(valid_.size());
+  const bool too_few = remaining < options_.min_features ||
+                       remaining < options_.min_feature_fraction * reference_features_;
+  if (!too_few || model_->CurrentStereoFeatures() <= remaining) return false;
+  // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
+  ref_from_world_ = filter_.cam_from_ref() * ref_from_world_;
+  filter_.Rebase();
+  reference_features_ = model_->SetReference(frame);
+  ++counters_.rebootstraps;
+  return true;
+}
+
+TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
+  TrackerOutput out;
+  ++counters_.frames;
+  if (!started_) {
+    Start(frame);
+    out.status = TrackingStatus::kReinitialized;
+    out.features_available = reference_features_;
+    return out;
+  }
+  ++frames_since_start_;
+  filter_.Predict();
+  const Rigid3d predicted = filter_.cam_from_ref();
+  model_->SetCurrent(frame);
+  EvaluateAtPrediction(predicted);
+  out.features_available = static_cast<int>(valid_.size());
+
+  const int valid = static_cast<int>(valid_.size());
+  const int gated = static_cast<int>(inliers_.size());
+  const bool weak_prior = frames_since_start_ <= options_.robust_start_frames;
+  const bool suspicious =
+      !healthy_ || gated < std::max(2, static_cast<int>(std::ceil(options_.min_inlier_fraction * previous_inliers_)));
+  Rigid3d linearization = predicted;
+  bool blocks_at_linearization = true;
+  if (options_.robust && valid >= 2 && (weak_prior || suspicious)) {
+    ++counters_.robust_solves;
+    starts_.assign({predicted, filter_.previous_cam_from_ref()});
+    robust_solver_.Solve(*model_, features_, valid_, starts_, gate_, options_.ransac_max_iterations,
+                         options_.ransac_confidence, &robust_result_);
+    const int consensus = static_cast<int>(robust_result_.inliers.size());
+    if (robust_result_.success && consensus >= 2 && (weak_prior || consensus > gated)) {
+      // The robust solve explains more features than the gate let through (or the prior is
+      // too weak to gate): linearise there, on its inliers. If it is also incompatible with the
+      // prediction, the filter went wrong: restart it from the measurement-only solve instead
+      // of coasting on the prediction.
+      inliers_ = robust_result_.inliers;
+      linearization = robust_result_.cam_from_ref;
+      blocks_at_linearization = false;
+      const Vector6d d = LogSE3(linearization * predicted.Inverse());
+      const double mahalanobis = d.dot(filter_.PoseCovariance().ldlt().solve(d));
+      if (!(mahalanobis < reseed_gate_)) {
+        filter_.Reseed(linearization, robust_result_.information.ldlt().solve(Matrix6d::Identity()));
+        ++counters_.reseeds;
+      }
+    }
+  }
+
+  int used = static_cast<int>(inliers_.size());
+  if (used < 2) {
+    // Nothing to measure with: keep the prediction and say so.
+    healthy_ = false;
+    ++counters_.lost_frames;
+    out.status = TrackingStatus::kLost;
+  } else {
+    const double cost = IteratedUpdate(linearization, blocks_at_linearization);
+    used = static_cast<int>(inliers_.size());  // less the outliers re-gated at the solution
+    // Healthy when the posterior cost is plausible for its degrees of freedom: below
+    // max_normalized_cost per degree of freedom, and never below the 99.9 % chi-square quantile
+    // (Wilson-Hilferty), which matters for few features.
+    const double dof = std::max(1.0, 4.0 * used - 6.0);
+    const double h = 2.0 / (9.0 * dof);
+    const double chi2_999 = dof * std::pow(1.0 - h + 3.09 * std::sqrt(h), 3.0);
+    healthy_ = cost <= std::max(options_.max_normalized_cost * dof, chi2_999);
+    AdaptNoiseScale();
+    if (getenv("SLT_DEBUG")) fprintf(stderr, "frame %d valid %d gated %d used %d cost/dof %.3f s %.3f robust %d reseeds %d\n", counters_.frames, valid, gated, used, cost/(4.0*used-6), std::sqrt(noise_scale_sq_), counters_.robust_solves, counters_.reseeds);
+    out.status = TrackingStatus::kTracking;
+  }
+  previous_inliers_ = used;
+  if (!filter_.cam_from_ref().rotation.allFinite() || !filter_.cam_from_ref().translation.allFinite()) {
+    // Defensive: never hand out a non-finite pose. Restart from the last good pose.
+    filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4);
+    healthy_ = false;
+    out.status = TrackingStatus::kLost;
+  }
+  out.features_used = out.status == TrackingStatus::kLost ? 0 : used;
+  out.cam_from_world = filter_.cam_from_ref() * ref_from_world_;
+  if (MaybeRebootstrap(frame, out.features_used)) out.status = TrackingStatus::kReinitialized;
+  return out;
+}
+
+}  // namespace slt

@@ -1,0 +1,93 @@
+// The stereo EKF tracker shared by the trifocal-line tracker (paper Sec. 3-4) and Yu's point
+// tracker: one filter, one FeatureModel per feature type.
+//
+// Per frame t:
+//   1. predict (eq. 18): xi_t|t-1 = xi_t-1, M_t|t-1 = Exp(xi) M_t-1 (pose_velocity_filter.h);
+//   2. evaluate every feature matched between the reference pair and the current pair at the
+//      prediction: residual, Jacobian and measurement covariance (the model's job);
+//   3. validation gate (eq. 20): r^T (J P J^T + R)^-1 r < g per feature;
+//   4. when the prior is weak (first frames) or the filter looks unhealthy, a RANSAC over
+//      feature pairs (robust_pose_solver.h) seeds the update and its inlier set, and re-seeds
+//      the filter if the prediction is inconsistent with it;
+//   5. update (eq. 19) as an iterated EKF: Gauss-Newton on
+//      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update;
+//   6. feature replacement (Sec. 3.3): when too few reference features remain, the current
+//      pair becomes the reference and the world pose of the reference is chained.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "methods/pose_tracker.h"
+#include "methods/stereo_ekf/feature_model.h"
+#include "methods/stereo_ekf/least_squares.h"
+#include "methods/stereo_ekf/pose_velocity_filter.h"
+#include "methods/stereo_ekf/robust_pose_solver.h"
+#include "methods/stereo_ekf/stereo_ekf_options.h"
+
+namespace slt {
+
+class StereoEkfTracker : public PoseTracker {
+ public:
+  // `model_options` is the model's part of the options, echoed by Options().
+  StereoEkfTracker(const StereoEkfOptions& options, std::unique_ptr<FeatureModel> model,
+                   nlohmann::json model_options);
+
+  void Reset(const StereoRig& rig) override;
+  TrackerOutput Track(const StereoFrame& frame) override;
+  nlohmann::json Options() const override;
+
+  // Counters since Reset, for tests and diagnostics.
+  struct Counters {
+    int frames = 0;
+    int rebootstraps = 0;     // new reference pairs (not counting the first frame)
+    int robust_solves = 0;    // RANSAC runs
+    int reseeds = 0;          // filter re-seeded from a RANSAC solve
+    int lost_frames = 0;
+  };
+  double noise_scale() const { return std::sqrt(noise_scale_sq_); }
+  const Counters& counters() const { return counters_; }
+  const PoseVelocityFilter& filter() const { return filter_; }
+  const FeatureModel& model() const { return *model_; }
+
+ private:
+  void Start(const StereoFrame& frame);
+  void EvaluateAtPrediction(const Rigid3d& predicted);
+  // Iterated update on `inliers_`, with the filter's pose as prior mean, starting at
+  // `linearization`; `blocks_at_linearization` says that features_ were evaluated there.
+  // Returns the posterior cost of the measurements (whitened, squared).
+  double IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization);
+  // Drops the inliers whose linearised cost after `step` exceeds the gate; true if any.
+  bool RemovePosteriorOutliers(const Vector6d& step);
+  void AdaptNoiseScale();
+  // `used` = features that entered this frame's update.
+  bool MaybeRebootstrap(const StereoFrame& frame, int used);
+
+  StereoEkfOptions options_;
+  std::unique_ptr<FeatureModel> model_;
+  nlohmann::json model_options_;
+  double gate_ = 0.0;
+  double reseed_gate_ = 0.0;  // chi-square, 6 dof
+
+  bool started_ = false;
+  bool healthy_ = true;
+  int previous_inliers_ = 0;
+  double noise_scale_sq_ = 1.0;
+  int frames_since_start_ = 0;
+  int reference_features_ = 0;
+  Rigid3d ref_from_world_;
+  PoseVelocityFilter filter_;
+  RobustPoseSolver robust_solver_;
+  Counters counters_;
+
+  // Per-frame workspace, kept to avoid allocation in the hot path.
+  std::vector<WeightedFeature> features_;
+  std::vector<int> valid_;
+  std::vector<int> inliers_;
+  std::vector<double> posterior_costs_;
+  std::vector<Rigid3d> starts_;
+  RobustSolveResult robust_result_;
+};
+
+}  // namespace slt

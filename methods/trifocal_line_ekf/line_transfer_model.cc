@@ -1,0 +1,274 @@
+#include "methods/trifocal_line_ekf/line_transfer_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/trifocal.h"
+
+namespace slt {
+namespace {
+
+bool ById(const LineObservation& a, const LineObservation& b) { return a.id < b.id; }
+
+}  // namespace
+
+void LineTransferOptions::Check(const std::string& where, const std::string& path) const {
+  auto fail = [&](const std::string& key, const std::string& why) { ThrowOptionError(where, path, key, why); };
+  if (direction != "current_to_reference" && direction != "reference_to_current") {
+    fail("direction", "must be \"current_to_reference\" or \"reference_to_current\"");
+  }
+  if (residual != "endpoint_distance" && residual != "theta_lambda") {
+    fail("residual", "must be \"endpoint_distance\" or \"theta_lambda\"");
+  }
+  if (noise != "propagated" && noise != "fixed") fail("noise", "must be \"propagated\" or \"fixed\"");
+  if (!(endpoint_sigma_px > 0.0)) fail("endpoint_sigma_px", "must be > 0");
+  if (!(covariance_floor_px > 0.0)) fail("covariance_floor_px", "must be > 0");
+  if (!(covariance_floor_rad > 0.0)) fail("covariance_floor_rad", "must be > 0");
+  if (!(fixed_sigma_px > 0.0)) fail("fixed_sigma_px", "must be > 0");
+  if (!(fixed_sigma_rad > 0.0)) fail("fixed_sigma_rad", "must be > 0");
+  if (!(min_plane_angle_deg >= 0.0 && min_plane_angle_deg < 90.0)) fail("min_plane_angle_deg", "must be in [0, 90)");
+  if (!(min_segment_length_px >= 0.0)) fail("min_segment_length_px", "must be >= 0");
+}
+
+void ReadLineTransferOptions(JsonReader& r, LineTransferOptions* o) {
+  r.Get("direction", &o->direction)
+      .Get("residual", &o->residual)
+      .Get("noise", &o->noise)
+      .Get("endpoint_sigma_px", &o->endpoint_sigma_px)
+      .Get("covariance_floor_px", &o->covariance_floor_px)
+      .Get("covariance_floor_rad", &o->covariance_floor_rad)
+      .Get("fixed_sigma_px", &o->fixed_sigma_px)
+      .Get("fixed_sigma_rad", &o->fixed_sigma_rad)
+      .Get("min_plane_angle_deg", &o->min_plane_angle_deg)
+      .Get("min_segment_length_px", &o->min_segment_length_px);
+  o->Check(r.where(), r.path());
+}
+
+nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& o) {
+  return {{"direction", o.direction},
+          {"residual", o.residual},
+          {"noise", o.noise},
+          {"endpoint_sigma_px", o.endpoint_sigma_px},
+          {"covariance_floor_px", o.covariance_floor_px},
+          {"covariance_floor_rad", o.covariance_floor_rad},
+          {"fixed_sigma_px", o.fixed_sigma_px},
+          {"fixed_sigma_rad", o.fixed_sigma_rad},
+          {"min_plane_angle_deg", o.min_plane_angle_deg},
+          {"min_segment_length_px", o.min_segment_length_px}};
+}
+
+LineTransferModel::LineTransferModel(const LineTransferOptions& options) : options_(options) {
+  options_.Check();
+  paper_direction_ = options_.direction == "current_to_reference";
+  distance_residual_ = options_.residual == "endpoint_distance";
+  propagated_noise_ = options_.noise == "propagated";
+  min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
+  // Residual units per scalar: [px, px, px, px] or [rad, px, rad, px].
+  Eigen::Vector4d fixed_sigma, floor;
+  if (distance_residual_) {
+    fixed_sigma.setConstant(options_.fixed_sigma_px);
+    floor.setConstant(options_.covariance_floor_px);
+  } else {
+    fixed_sigma << options_.fixed_sigma_rad, options_.fixed_sigma_px, options_.fixed_sigma_rad, options_.fixed_sigma_px;
+    floor << options_.covariance_floor_rad, options_.covariance_floor_px, options_.covariance_floor_rad,
+        options_.covariance_floor_px;
+  }
+  fixed_covariance_ = fixed_sigma.array().square().matrix().asDiagonal();
+  covariance_floor_ = floor.array().square();
+}
+
+void LineTransferModel::Reset(const StereoRig& rig) {
+  rig_ = rig;
+  left_pixel_from_normalized_ = PixelFromNormalizedLineMatrix(rig.left);
+  right_pixel_from_normalized_ = PixelFromNormalizedLineMatrix(rig.right);
+  reference_.clear();
+  current_.clear();
+  matches_.clear();
+  current_stereo_ = 0;
+}
+
+bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamera& camera,
+                                    ObservedSegment* out) const {
+  if (!segment.allFinite() ||
+      (segment.tail<2>() - segment.head<2>()).norm() < std::max(options_.min_segment_length_px, 1e-9)) {
+    return false;
+  }
+  Eigen::Matrix<double, 3, 4> d_pixel_line;
+  const Eigen::Vector3d pixel_line = LineFromSegment(segment, &d_pixel_line);
+  // K^T: the normalised line (eq. 6-7).
+  Eigen::Matrix3d kt;
+  kt << camera.fx, 0.0, 0.0, 0.0, camera.fy, 0.0, camera.cx, camera.cy, 1.0;
+  const Eigen::Vector3d line = kt * pixel_line;
+  const double inv_norm = 1.0 / line.norm();
+  out->segment = segment;
+  out->line = line * inv_norm;
+  // Scaling the Jacobian by the same factor (without the projection onto the unit sphere) is
+  // exact here: every residual is invariant to the positive scale of its input lines.
+  out->line_d_segment = (kt * d_pixel_line) * inv_norm;
+  return true;
+}
+
+void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out) {
+  left_sorted_.assign(frame.left.begin(), frame.left.end());
+  right_sorted_.assign(frame.right.begin(), frame.right.end());
+  std::sort(left_sorted_.begin(), left_sorted_.end(), ById);
+  std::sort(right_sorted_.begin(), right_sorted_.end(), ById);
+  out->clear();
+  auto l = left_sorted_.begin();
+  auto r = right_sorted_.begin();
+  while (l != left_sorted_.end() && r != right_sorted_.end()) {
+    if (l->id < r->id) {
+      ++l;
+    } else if (r->id < l->id) {
+      ++r;
+    } else {
+      StereoLine line;
+      line.id = l->id;
+      if (MakeSegment(l->segment, rig_.left, &line.left) && MakeSegment(r->segment, rig_.right, &line.right)) {
+        out->push_back(line);
+      }
+      ++l;
+      ++r;
+    }
+  }
+}
+
+int LineTransferModel::SetReference(const StereoFrame& frame) {
+  CollectStereoLines(frame, &reference_);
+  reference_lines_.resize(reference_.size());
+  for (size_t i = 0; i < reference_.size(); ++i) {
+    const StereoLine& ref = reference_[i];
+    ReferenceLine& out = reference_lines_[i];
+    Matrix63d d_left, d_right;
+    out.line = StereoPairLine(rig_.right_from_left, ref.left.line, ref.right.line, &d_left, &d_right, &out.plane_sine);
+    out.line_d_left_segment = d_left * ref.left.line_d_segment;
+    out.line_d_right_segment = d_right * ref.right.line_d_segment;
+  }
+  matches_.clear();
+  return static_cast<int>(reference_.size());
+}
+
+int LineTransferModel::SetCurrent(const StereoFrame& frame) {
+  CollectStereoLines(frame, &current_);
+  current_stereo_ = static_cast<int>(current_.size());
+  matches_.clear();
+  size_t i = 0, j = 0;
+  while (i < reference_.size() && j < current_.size()) {
+    if (reference_[i].id < current_[j].id) {
+      ++i;
+    } else if (current_[j].id < reference_[i].id) {
+      ++j;
+    } else {
+      matches_.push_back({reference_[i].id, static_cast<int>(i), static_cast<int>(j)});
+      ++i;
+      ++j;
+    }
+  }
+  return static_cast<int>(matches_.size());
+}
+
+Eigen::Vector2d LineTransferModel::Residual(const Eigen::Vector3d& line, const ObservedSegment& measured,
+                                            const Eigen::Matrix3d& pixel_from_normalized, double fx,
+                                            Eigen::Matrix<double, 2, 3>* d_line,
+                                            Eigen::Matrix<double, 2, 4>* d_measured) const {
+  Eigen::Vector2d r;
+  if (distance_residual_) {
+    const Eigen::Vector3d pixel_line = pixel_from_normalized * line;
+    Eigen::Matrix<double, 1, 3> dl_a, dl_b;
+    Eigen::Matrix<double, 1, 2> dp_a, dp_b;
+    r(0) = SignedDistance(pixel_line, measured.segment.head<2>(), &dl_a, &dp_a);
+    r(1) = SignedDistance(pixel_line, measured.segment.tail<2>(), &dl_b, &dp_b);
+    d_line->row(0) = dl_a * pixel_from_normalized;
+    d_line->row(1) = dl_b * pixel_from_normalized;
+    if (d_measured) {
+      d_measured->setZero();
+      d_measured->block<1, 2>(0, 0) = dp_a;
+      d_measured->block<1, 2>(1, 2) = dp_b;
+    }
+    return r;
+  }
+  // The paper's residual: measured minus predicted (theta, lambda), lambda in pixels.
+  r = ThetaLambdaResidual(measured.line, line, d_line);
+  r(1) *= fx;
+  d_line->row(1) *= fx;
+  if (d_measured) {
+    Eigen::Matrix<double, 2, 3> d_measured_line;
+    ThetaLambdaFromLine(measured.line, &d_measured_line);
+    d_measured_line.row(1) *= fx;
+    *d_measured = d_measured_line * measured.line_d_segment;
+  }
+  return r;
+}
+
+bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
+                                 FeatureBlock* block) const {
+  const Match& match = matches_[index];
+  const StereoLine& ref = reference_[match.reference];
+  const StereoLine& cur = current_[match.current];
+  // Noise Jacobian columns: endpoints of [ref left | ref right | cur left | cur right].
+  Eigen::Matrix<double, 4, 16> noise_jacobian;
+  Eigen::Matrix<double, 2, 3> d1, d2;
+  Eigen::Matrix<double, 2, 4> m1, m2;
+  Eigen::Matrix<double, 2, 4>* want_m1 = with_covariance && propagated_noise_ ? &m1 : nullptr;
+  Eigen::Matrix<double, 2, 4>* want_m2 = with_covariance && propagated_noise_ ? &m2 : nullptr;
+  const bool propagate = want_m1 != nullptr;
+
+  if (paper_direction_) {
+    CurrentToReferenceTransfer t;
+    TransferCurrentToReference(rig_.right_from_left, cam_from_ref, ref.right.line, cur.left.line, cur.right.line,
+                               true, &t);
+    if (t.via_T_plane_sine < min_plane_sine_ || t.via_Tprime_plane_sine < min_plane_sine_) return false;
+    block->residual.head<2>() = Residual(t.via_T, ref.left, left_pixel_from_normalized_, rig_.left.fx, &d1, want_m1);
+    block->residual.tail<2>() =
+        Residual(t.via_Tprime, ref.left, left_pixel_from_normalized_, rig_.left.fx, &d2, want_m2);
+    block->jacobian.topRows<2>() = d1 * t.via_T_d_pose;
+    block->jacobian.bottomRows<2>() = d2 * t.via_Tprime_d_pose;
+    if (propagate) {
+      noise_jacobian.block<2, 4>(0, 0) = m1;
+      noise_jacobian.block<2, 4>(0, 4) = d1 * t.via_T_d_ref_right * ref.right.line_d_segment;
+      noise_jacobian.block<2, 4>(0, 8) = d1 * t.via_T_d_cur_left * cur.left.line_d_segment;
+      noise_jacobian.block<2, 4>(0, 12).setZero();
+      noise_jacobian.block<2, 4>(2, 0) = m2;
+      noise_jacobian.block<2, 4>(2, 4).setZero();
+      noise_jacobian.block<2, 4>(2, 8) = d2 * t.via_Tprime_d_cur_left * cur.left.line_d_segment;
+      noise_jacobian.block<2, 4>(2, 12) = d2 * t.via_Tprime_d_cur_right * cur.right.line_d_segment;
+    }
+  } else {
+    // The reference pair's 3-D line (cached) imaged in the current pair: the trifocal transfer
+    // with the current camera as the tensor's first view (geometry/plucker.h).
+    const ReferenceLine& line = reference_lines_[match.reference];
+    if (line.plane_sine < min_plane_sine_) return false;
+    StereoLineImages images;
+    ImageLineInStereoPair(rig_.right_from_left, cam_from_ref, line.line, propagate, &images);
+    block->residual.head<2>() =
+        Residual(images.left, cur.left, left_pixel_from_normalized_, rig_.left.fx, &d1, want_m1);
+    block->residual.tail<2>() =
+        Residual(images.right, cur.right, right_pixel_from_normalized_, rig_.right.fx, &d2, want_m2);
+    block->jacobian.topRows<2>().noalias() = d1 * images.left_d_pose;
+    block->jacobian.bottomRows<2>().noalias() = d2 * images.right_d_pose;
+    if (propagate) {
+      const Eigen::Matrix<double, 2, 6> d1_line = d1 * images.left_d_line;
+      const Eigen::Matrix<double, 2, 6> d2_line = d2 * images.right_d_line;
+      noise_jacobian.block<2, 4>(0, 0).noalias() = d1_line * line.line_d_left_segment;
+      noise_jacobian.block<2, 4>(0, 4).noalias() = d1_line * line.line_d_right_segment;
+      noise_jacobian.block<2, 4>(0, 8) = m1;
+      noise_jacobian.block<2, 4>(0, 12).setZero();
+      noise_jacobian.block<2, 4>(2, 0).noalias() = d2_line * line.line_d_left_segment;
+      noise_jacobian.block<2, 4>(2, 4).noalias() = d2_line * line.line_d_right_segment;
+      noise_jacobian.block<2, 4>(2, 8).setZero();
+      noise_jacobian.block<2, 4>(2, 12) = m2;
+    }
+  }
+  if (with_covariance) {
+    if (propagate) {
+      const double var = options_.endpoint_sigma_px * options_.endpoint_sigma_px;
+      block->covariance.noalias() = var * noise_jacobian.lazyProduct(noise_jacobian.transpose());
+      block->covariance.diagonal() += covariance_floor_;
+    } else {
+      block->covariance = fixed_covariance_;
+    }
+  }
+  return true;
+}
+
+}  // namespace slt

@@ -1,0 +1,135 @@
+// The measurement model of the trifocal-line EKF (paper Sec. 3.2 and 4, eq. 13-17).
+//
+// For a line m seen in the reference pair (l_1, l'_1) and in the current pair (l_t, l'_t),
+// with M = cam_from_ref the current left camera and E = right_from_left:
+//
+//   direction "current_to_reference" (the paper's, eq. 16):
+//     T  over (I_1, I'_1, I_t):  L_1 = T(l'_1, l_t)       [l_1]_i = [l'_1]_j [l_t]_k T_i^jk
+//     T' over (I_1, I_t, I'_t):  L_2 = T'(l_t, l'_t)      [l_1]_i = [l_t]_j [l'_t]_k T'_i^jk
+//     both predict the measured reference line l_1 in I_1;
+//   direction "reference_to_current":
+//     L_1 = the reference pair transferred into I_t, L_2 into I'_t (the current camera as the
+//     tensor's first view); they predict the current lines l_t and l'_t.
+//
+// with T_i = a_i b_4^T - a_4 b_i^T (eq. 17) evaluated through back-projected planes
+// (geometry/trifocal.h). Each predicted line gives two residual scalars against its measured
+// segment (4 per line, so two lines over-determine the pose):
+//   residual "endpoint_distance": signed distances (px) of the measured segment's endpoints
+//     to the predicted line;
+//   residual "theta_lambda": the paper's slope/polar-radius difference [d theta (rad);
+//     d lambda (px)] with theta = atan2(b, a), lambda = -c / |(a, b)| of the normalised line,
+//     lambda scaled by fx (replaces the garbled eq. 8-9; docs/derivations.md).
+// Measurement covariance R:
+//   noise "fixed": the paper's constant diagonal R;
+//   noise "propagated": R = sigma^2 N N^T + floor, N the Jacobian of the 4 residuals with
+//     respect to the 16 endpoint coordinates of the four observed segments.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/json_reader.h"
+#include "geometry/plucker.h"
+#include "methods/stereo_ekf/feature_model.h"
+
+namespace slt {
+
+struct LineTransferOptions {
+  std::string direction = "reference_to_current";  // or "current_to_reference" (the paper's)
+  std::string residual = "endpoint_distance";      // or "theta_lambda"
+  std::string noise = "propagated";                // or "fixed"
+  // Standard deviation of each endpoint coordinate (uniform +-n px has sigma = n / sqrt(3)).
+  double endpoint_sigma_px = 1.5;
+  // Added to the diagonal of a propagated R: just after a new reference (M ~ I) the two
+  // transfers return the same line and R is nearly singular.
+  double covariance_floor_px = 0.05;
+  double covariance_floor_rad = 1e-4;
+  // Fixed R: per residual scalar.
+  double fixed_sigma_px = 2.0;
+  double fixed_sigma_rad = 0.005;
+  // Features whose transfer intersects two planes closer than this are not measured (lines in
+  // the epipolar plane of the views a transfer uses: horizontal lines in a horizontal rig).
+  double min_plane_angle_deg = 3.0;
+  // Segments shorter than this (px) are ignored.
+  double min_segment_length_px = 5.0;
+
+  void Check(const std::string& where = "line transfer options", const std::string& path = "") const;
+};
+
+void ReadLineTransferOptions(JsonReader& reader, LineTransferOptions* options);
+nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& options);
+
+class LineTransferModel final : public FeatureModel {
+ public:
+  explicit LineTransferModel(const LineTransferOptions& options);
+
+  void Reset(const StereoRig& rig) override;
+  int SetReference(const StereoFrame& frame) override;
+  int SetCurrent(const StereoFrame& frame) override;
+  int NumFeatures() const override { return static_cast<int>(matches_.size()); }
+  int CurrentStereoFeatures() const override { return current_stereo_; }
+  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
+                FeatureBlock* block) const override;
+
+  // The id of feature `index` (for diagnostics and tests).
+  std::int64_t FeatureId(int index) const { return matches_[index].id; }
+
+ private:
+  // One observed segment with its normalised line (unit norm) and the Jacobian of that line
+  // with respect to the segment's endpoints (scaled consistently with the unit norm; the
+  // residuals are invariant to the line's positive scale, see docs/derivations.md).
+  struct ObservedSegment {
+    Segment2d segment;
+    Eigen::Vector3d line;
+    Eigen::Matrix<double, 3, 4> line_d_segment;
+  };
+  struct StereoLine {
+    std::int64_t id;
+    ObservedSegment left, right;
+  };
+  // Per reference line, for direction "reference_to_current": the 3-D line of the pair
+  // (l_1, l'_1) in the reference frame, computed once per reference, with the Jacobians of
+  // [n; d] with respect to the endpoints of the left and right segments.
+  struct ReferenceLine {
+    PlueckerLine line;
+    Eigen::Matrix<double, 6, 4> line_d_left_segment;
+    Eigen::Matrix<double, 6, 4> line_d_right_segment;
+    double plane_sine;
+  };
+  struct Match {
+    std::int64_t id;
+    int reference;  // index into reference_
+    int current;    // index into current_
+  };
+
+  // Stereo-matched lines of a frame, sorted by id, into `out`.
+  void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
+  bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;
+  // Two residual scalars of predicted normalised line `line` (in a view with intrinsics of
+  // `pixel_from_normalized` = K^-T and fx) against `measured`, with their Jacobians with respect
+  // to the predicted line and to the measured segment's endpoints.
+  Eigen::Vector2d Residual(const Eigen::Vector3d& line, const ObservedSegment& measured,
+                           const Eigen::Matrix3d& pixel_from_normalized, double fx,
+                           Eigen::Matrix<double, 2, 3>* d_line, Eigen::Matrix<double, 2, 4>* d_measured) const;
+
+  LineTransferOptions options_;
+  bool paper_direction_ = true;
+  bool distance_residual_ = true;
+  bool propagated_noise_ = true;
+  double min_plane_sine_ = 0.0;
+  StereoRig rig_;
+  Eigen::Matrix3d left_pixel_from_normalized_;
+  Eigen::Matrix3d right_pixel_from_normalized_;
+  Eigen::Matrix4d fixed_covariance_;
+  Eigen::Vector4d covariance_floor_;
+
+  std::vector<StereoLine> reference_;
+  std::vector<ReferenceLine> reference_lines_;  // parallel to reference_
+  std::vector<StereoLine> current_;
+  std::vector<Match> matches_;
+  int current_stereo_ = 0;
+  // Scratch for CollectStereoLines, kept to avoid allocation per frame.
+  std::vector<LineObservation> left_sorted_, right_sorted_;
+};
+
+}  // namespace slt

@@ -1,0 +1,166 @@
+#include "methods/trifocal_line_ekf/line_transfer_model.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "geometry/numeric_jacobian.h"
+#include "geometry/se3.h"
+
+namespace slt {
+namespace {
+
+// A few 3-D lines in front of a default rig, projected into a stereo frame.
+struct TinyScene {
+  StereoRig rig;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lines = {
+      {{-0.10, 0.05, 0.50}, {0.12, -0.06, 0.62}},
+      {{0.05, -0.12, 0.45}, {0.02, 0.14, 0.55}},
+      {{-0.15, -0.10, 0.70}, {-0.05, 0.10, 0.40}},
+      {{0.10, 0.10, 0.60}, {0.16, -0.12, 0.52}},
+  };
+
+  StereoFrame Frame(const Rigid3d& cam_from_ref) const {
+    StereoFrame f;
+    const Rigid3d right_from_ref = rig.right_from_left * cam_from_ref;
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const auto& [p, q] = lines[i];
+      Segment2d l, r;
+      l << rig.left.Project(cam_from_ref * p), rig.left.Project(cam_from_ref * q);
+      r << rig.right.Project(right_from_ref * p), rig.right.Project(right_from_ref * q);
+      f.left.push_back({static_cast<std::int64_t>(10 + 3 * i), l});
+      f.right.push_back({static_cast<std::int64_t>(10 + 3 * i), r});
+    }
+    return f;
+  }
+};
+
+Rigid3d SomeMotion() {
+  Vector6d xi;
+  xi << 0.02, -0.01, 0.015, 0.01, -0.02, 0.015;
+  return ExpSE3(xi);
+}
+
+LineTransferOptions Options(const std::string& direction, const std::string& residual) {
+  LineTransferOptions o;
+  o.direction = direction;
+  o.residual = residual;
+  o.min_plane_angle_deg = 0.0;
+  return o;
+}
+
+class LineTransferModelTest : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(LineTransferModelTest, ZeroResidualAtTruthAndJacobianMatches) {
+  const auto [direction, residual] = GetParam();
+  TinyScene scene;
+  LineTransferModel model(Options(direction, residual));
+  model.Reset(scene.rig);
+  const Rigid3d truth = SomeMotion();
+  ASSERT_EQ(model.SetReference(scene.Frame(Rigid3d())), 4);
+  ASSERT_EQ(model.SetCurrent(scene.Frame(truth)), 4);
+  for (int i = 0; i < model.NumFeatures(); ++i) {
+    FeatureBlock block;
+    ASSERT_TRUE(model.Evaluate(i, truth, true, &block));
+    EXPECT_LT(block.residual.norm(), 1e-9) << "feature " << i;
+    // Jacobian against central differences, away from the truth too.
+    const Rigid3d at = ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+    ASSERT_TRUE(model.Evaluate(i, at, false, &block));
+    const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
+      FeatureBlock b;
+      EXPECT_TRUE(model.Evaluate(i, ExpSE3(d) * at, false, &b));
+      return b.residual;
+    };
+    const Eigen::Matrix<double, 4, 6> numeric = CentralDifferenceJacobian<4, 6>(f, Vector6d::Zero());
+    EXPECT_LT((numeric - block.jacobian).norm(), 1e-6 * (1.0 + numeric.norm())) << "feature " << i;
+  }
+}
+
+TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
+  const auto [direction, residual] = GetParam();
+  TinyScene scene;
+  LineTransferOptions options = Options(direction, residual);
+  options.endpoint_sigma_px = 1.3;
+  LineTransferModel model(options);
+  model.Reset(scene.rig);
+  const Rigid3d truth = SomeMotion();
+  const StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(truth);
+  model.SetReference(ref);
+  model.SetCurrent(cur);
+  const int feature = 1;
+  FeatureBlock block;
+  ASSERT_TRUE(model.Evaluate(feature, truth, true, &block));
+  // Perturb each of the 16 endpoint coordinates of the feature's four segments.
+  const auto residual_of = [&](const Eigen::Matrix<double, 16, 1>& x) -> Eigen::Vector4d {
+    StereoFrame r = ref, c = cur;
+    r.left[feature].segment = x.segment<4>(0);
+    r.right[feature].segment = x.segment<4>(4);
+    c.left[feature].segment = x.segment<4>(8);
+    c.right[feature].segment = x.segment<4>(12);
+    LineTransferModel m(options);
+    m.Reset(scene.rig);
+    m.SetReference(r);
+    m.SetCurrent(c);
+    FeatureBlock b;
+    EXPECT_TRUE(m.Evaluate(feature, truth, false, &b));
+    return b.residual;
+  };
+  Eigen::Matrix<double, 16, 1> x;
+  x << ref.left[feature].segment, ref.right[feature].segment, cur.left[feature].segment, cur.right[feature].segment;
+  const Eigen::Matrix<double, 4, 16> N = CentralDifferenceJacobian<4, 16>(residual_of, x, 1e-5);
+  Eigen::Matrix4d expected = 1.3 * 1.3 * N * N.transpose();
+  const bool distance = residual == "endpoint_distance";
+  const Eigen::Vector4d floor = distance ? Eigen::Vector4d::Constant(0.05)
+                                         : Eigen::Vector4d(options.covariance_floor_rad, 0.05,
+                                                           options.covariance_floor_rad, 0.05);
+  expected.diagonal() += floor.array().square().matrix();
+  EXPECT_LT((expected - block.covariance).norm(), 1e-6 * expected.norm());
+}
+
+INSTANTIATE_TEST_SUITE_P(AllVariants, LineTransferModelTest,
+                         ::testing::Combine(::testing::Values("current_to_reference", "reference_to_current"),
+                                            ::testing::Values("endpoint_distance", "theta_lambda")));
+
+TEST(LineTransferModel, AssociatesByIdAndSkipsMonocularLines) {
+  TinyScene scene;
+  LineTransferModel model(Options("current_to_reference", "endpoint_distance"));
+  model.Reset(scene.rig);
+  StereoFrame ref = scene.Frame(Rigid3d());
+  StereoFrame cur = scene.Frame(SomeMotion());
+  ref.right.erase(ref.right.begin());          // line 10: left only in the reference
+  cur.left.erase(cur.left.begin() + 2);        // line 16: right only in the current frame
+  std::reverse(cur.left.begin(), cur.left.end());  // order does not matter
+  EXPECT_EQ(model.SetReference(ref), 3);
+  EXPECT_EQ(model.SetCurrent(cur), 2);
+  EXPECT_EQ(model.CurrentStereoFeatures(), 3);
+  EXPECT_EQ(model.FeatureId(0), 13);
+  EXPECT_EQ(model.FeatureId(1), 19);
+}
+
+TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
+  TinyScene scene;
+  scene.lines = {{{-0.1, 0.02, 0.5}, {0.1, 0.02, 0.5}}};  // horizontal: in the rig's epipolar plane
+  LineTransferOptions o = Options("current_to_reference", "endpoint_distance");
+  o.min_plane_angle_deg = 1.0;
+  LineTransferModel model(o);
+  model.Reset(scene.rig);
+  model.SetReference(scene.Frame(Rigid3d()));
+  model.SetCurrent(scene.Frame(Rigid3d()));
+  FeatureBlock block;
+  EXPECT_FALSE(model.Evaluate(0, Rigid3d(), true, &block));
+}
+
+TEST(LineTransferModel, OptionErrorsNameTheKey) {
+  const auto j = nlohmann::json::parse(R"({"residual": "angle"})");
+  JsonReader r(j, "cfg.json", "measurement");
+  LineTransferOptions o;
+  try {
+    ReadLineTransferOptions(r, &o);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("cfg.json: key 'measurement.residual'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace slt

@@ -1,0 +1,73 @@
+#include "simulator/scene.h"
+
+#include <gtest/gtest.h>
+
+namespace slt {
+namespace {
+
+bool SameLines(const std::vector<Line3d>& a, const std::vector<Line3d>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].p != b[i].p || a[i].q != b[i].q) return false;
+  }
+  return true;
+}
+
+TEST(Scene, PaperLinesHaveTheConfiguredLengthsAndPlaces) {
+  SceneConfig c;
+  const std::vector<Line3d> lines = MakeScene(c, 1);
+  ASSERT_EQ(lines.size(), 40u);
+  for (const Line3d& line : lines) {
+    const double length = (line.q - line.p).norm();
+    EXPECT_GE(length, c.paper.min_length_m);
+    EXPECT_LE(length, c.paper.max_length_m);
+    const Eigen::Vector3d offset = 0.5 * (line.p + line.q) - c.paper.box_center_m;
+    EXPECT_TRUE((offset.cwiseAbs().array() <= 0.5 * c.paper.box_size_m.array() + 1e-12).all());
+  }
+}
+
+TEST(Scene, PaperScenesWithFewerLinesAreNested) {
+  SceneConfig c;
+  const std::vector<Line3d> all = MakeScene(c, 5);
+  c.paper.lines = 10;
+  const std::vector<Line3d> some = MakeScene(c, 5);
+  EXPECT_TRUE(SameLines(some, std::vector<Line3d>(all.begin(), all.begin() + 10)));
+  EXPECT_FALSE(SameLines(MakeScene(c, 6), some));
+}
+
+// Structured scenes: everything inside the room, nothing degenerate, ids shuffled by the seed.
+void CheckStructured(const SceneConfig& c, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  const std::vector<Line3d> lines = MakeScene(c, 1);
+  EXPECT_GT(lines.size(), 100u);
+  for (const Line3d& line : lines) {
+    EXPECT_GT((line.q - line.p).norm(), 0.01);
+    for (const Eigen::Vector3d& x : {line.p, line.q}) {
+      EXPECT_TRUE((x.array() >= lo.array() - 1e-9).all() && (x.array() <= hi.array() + 1e-9).all())
+          << x.transpose();
+    }
+  }
+  EXPECT_TRUE(SameLines(MakeScene(c, 1), lines));
+  const std::vector<Line3d> other = MakeScene(c, 2);
+  EXPECT_FALSE(SameLines(other, lines));
+}
+
+TEST(Scene, RoomStaysInsideItsWalls) {
+  SceneConfig c;
+  c.type = SceneType::kRoom;
+  const RoomSceneConfig& r = c.room;
+  // The window and the door leaves are set up to 5 cm into the walls.
+  CheckStructured(c, {-0.5 * r.width_m - 0.05, r.camera_height_m - r.height_m, -0.4 * r.depth_m - 0.05},
+                  {0.5 * r.width_m + 0.05, r.camera_height_m, 0.6 * r.depth_m + 0.05});
+}
+
+TEST(Scene, CorridorStaysInsideItsWalls) {
+  SceneConfig c;
+  c.type = SceneType::kCorridor;
+  const CorridorSceneConfig& r = c.corridor;
+  // Door leaves are set 3 cm into the walls.
+  CheckStructured(c, {-0.5 * r.width_m - 0.03, r.camera_height_m - r.height_m, -2.0 - 0.03},
+                  {0.5 * r.width_m + 0.03, r.camera_height_m, r.length_m - 2.0 + 0.03});
+}
+
+}  // namespace
+}  // namespace slt

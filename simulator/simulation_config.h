@@ -1,0 +1,182 @@
+// The simulation config: every knob of a synthetic stereo line sequence, with defaults that
+// give the paper's protocol (Sec. 5.1): 40 random segments about 0.5 m in front of the rig,
+// f = 848.7 px, 0.1 m baseline, smooth random motion of at most 1.2 deg and 0.010 m per frame,
+// +-2.5 px uniform endpoint noise, 100 frames. docs/simulation.md lists every field.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "geometry/camera.h"
+
+namespace slt {
+
+enum class SceneType { kPaper, kRoom, kCorridor };
+enum class MotionType { kPaper, kLoop, kForward, kStatic, kPureRotation };
+enum class NoiseModel { kUniform, kGaussian };
+enum class EndpointModel { kFixed, kSliding };
+
+// The names used in JSON ("paper", "room", ...).
+const char* SceneTypeName(SceneType type);
+const char* MotionTypeName(MotionType type);
+const char* NoiseModelName(NoiseModel model);
+const char* EndpointModelName(EndpointModel model);
+
+// The motion a scene is meant for: what motion.type defaults to in a JSON config that does not
+// set it (paper -> paper, room -> loop, corridor -> forward).
+MotionType DefaultMotionFor(SceneType type);
+
+// scene.paper: N independent random segments with midpoints uniform in a box.
+struct PaperSceneConfig {
+  int lines = 40;
+  double min_length_m = 0.1;
+  double max_length_m = 0.3;
+  // World = left camera at frame 0 (x right, y down, z forward).
+  Eigen::Vector3d box_center_m{0.0, 0.0, 0.5};
+  // Sized with the motion's excursion: over 100 frames of the default "paper" motion about
+  // 93% of the observed segments cross the image over at least 20 px.
+  Eigen::Vector3d box_size_m{0.2, 0.15, 0.2};
+};
+
+// scene.room: a furnished room; the camera starts 0.4 * depth from the back wall, in the
+// middle of the width, camera_height_m above the floor, looking at the front wall.
+struct RoomSceneConfig {
+  double width_m = 5.0;   // along x
+  double depth_m = 6.0;   // along z
+  double height_m = 2.6;  // floor to ceiling
+  double camera_height_m = 1.4;
+};
+
+// scene.corridor: a long corridor along +z; the camera starts 2 m from its back end, on its
+// centre line, camera_height_m above the floor.
+struct CorridorSceneConfig {
+  double width_m = 2.0;
+  double height_m = 2.5;
+  double length_m = 30.0;
+  double camera_height_m = 1.5;
+};
+
+struct SceneConfig {
+  SceneType type = SceneType::kPaper;
+  PaperSceneConfig paper;
+  RoomSceneConfig room;
+  CorridorSceneConfig corridor;
+};
+
+// motion.sinusoid ("paper" and "pure_rotation"): each twist component of the per-frame
+// increment is a sinusoid with random amplitude, period and phase; the amplitudes of the
+// rotation (translation) components have a root sum of squares of max_rotation_deg
+// (max_translation_m), which bounds the per-frame rotation angle (translation).
+struct SinusoidMotionConfig {
+  double max_rotation_deg = 1.2;
+  double max_translation_m = 0.010;
+  double period_min_frames = 20.0;
+  double period_max_frames = 60.0;
+};
+
+// motion.loop: an ellipse in the horizontal plane that starts at the origin heading along +z
+// and turns right, returning exactly to the start pose at the last frame; the camera yaws by
+// up to yaw_amplitude_deg and wobbles up/down and in pitch/roll.
+struct LoopMotionConfig {
+  double radius_x_m = 0.3;
+  double radius_z_m = 0.4;
+  double yaw_amplitude_deg = 15.0;
+  double wobble_height_m = 0.02;
+  double wobble_deg = 1.0;
+};
+
+// motion.forward: step_m per frame along +z, with sinusoidal wobble of the other five
+// components (periods random in [0.5, 1.5] * wobble_period_frames).
+struct ForwardMotionConfig {
+  double step_m = 0.02;
+  double wobble_m = 0.02;
+  double wobble_deg = 1.0;
+  double wobble_period_frames = 60.0;
+};
+
+struct MotionConfig {
+  MotionType type = MotionType::kPaper;
+  SinusoidMotionConfig sinusoid;
+  LoopMotionConfig loop;
+  ForwardMotionConfig forward;
+};
+
+struct ObservationConfig {
+  // false (the paper's idealisation: infinite lines): a segment is observed whenever both
+  // endpoints are at least min_depth_m in front of the camera, wherever it projects.
+  // true (a real camera): the segment is cut at the plane z = min_depth_m, projected, clipped
+  // to the image and dropped when nothing of it is inside.
+  bool clip_to_image = false;
+  // Segments whose noise-free image (after clipping) is shorter are not observed.
+  double min_length_px = 10.0;
+  double min_depth_m = 0.05;
+};
+
+struct NoiseConfig {
+  NoiseModel model = NoiseModel::kUniform;
+  // uniform: each endpoint coordinate is offset by U(-endpoint_px, endpoint_px) (the paper's
+  // "+-n px"); gaussian: by N(0, endpoint_px^2).
+  double endpoint_px = 2.5;
+  // fixed: the observed endpoints are the projections of the 3-D endpoints in every frame;
+  // sliding: in every frame and image the observed segment is the projection of a random
+  // sub-interval [s0, s1] of the 3-D segment, s0 ~ U(0, f), s1 ~ U(1 - f, 1), f = slide_fraction.
+  EndpointModel endpoints = EndpointModel::kFixed;
+  double slide_fraction = 0.25;
+};
+
+struct OutlierConfig {
+  // Probability that an observed segment (any image, any frame, the first included) is
+  // replaced by a random segment in the image with the same id: a wrong match or track.
+  double rate = 0.0;
+};
+
+// Per-stream base seeds; an unset one follows SimulationConfig::seed.
+struct SeedOverrides {
+  std::optional<std::uint64_t> scene;
+  std::optional<std::uint64_t> motion;
+  std::optional<std::uint64_t> noise;
+  std::optional<std::uint64_t> outliers;
+};
+
+struct SimulationConfig {
+  std::uint64_t seed = 1;
+  SeedOverrides seeds;
+  int frames = 100;
+  double frame_rate = 30.0;  // Hz; frame k is at time k / frame_rate
+  StereoRig rig;             // the true rig the images are made with
+  // Added to fx and fy of both cameras in the rig given to the tracker (paper Fig. 5).
+  double focal_error_px = 0.0;
+  // Keep only the lines with id < max_features (0 = all), so that a sweep over the feature
+  // count uses nested sets of lines.
+  int max_features = 0;
+  SceneConfig scene;
+  MotionConfig motion;
+  ObservationConfig observation;
+  NoiseConfig noise;
+  OutlierConfig outliers;
+
+  // The base seed of each random stream.
+  std::uint64_t SceneSeed() const { return seeds.scene.value_or(seed); }
+  std::uint64_t MotionSeed() const { return seeds.motion.value_or(seed); }
+  std::uint64_t NoiseSeed() const { return seeds.noise.value_or(seed); }
+  std::uint64_t OutlierSeed() const { return seeds.outliers.value_or(seed); }
+  // The rig given to the tracker: `rig` with focal_error_px added to every focal length.
+  StereoRig TrackerRig() const;
+
+  // Throws ConfigError "<where>: key '<dotted.key>': <reason>" for the first invalid field.
+  void Check(const std::string& where = "simulation config") const;
+};
+
+// Missing keys keep their defaults, unknown keys and invalid values throw ConfigError naming
+// `where` and the key. Two defaults follow scene.type: motion.type is DefaultMotionFor(it) and
+// observation.clip_to_image is true for the structured scenes (the paper's protocol keeps its
+// infinite lines; a room seen without clipping would observe every wall at once).
+SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::string& where);
+// Every field, defaults filled in; unset seed overrides are null.
+// SimulationConfigFromJson(SimulationConfigToJson(c)) == c.
+nlohmann::json SimulationConfigToJson(const SimulationConfig& config);
+
+}  // namespace slt

@@ -1,0 +1,111 @@
+// The shared suite every registered tracker runs: a tracker is tested the moment it is added
+// to methods/registry.cc.
+#include <gtest/gtest.h>
+
+#include "common/json_reader.h"
+#include "tests/test_support.h"
+
+namespace slt {
+namespace {
+
+class TrackerSuite : public ::testing::TestWithParam<std::string> {
+ protected:
+  const TrackerInfo& info() const { return FindTracker(GetParam()); }
+  std::unique_ptr<PoseTracker> Make() const { return CreateTracker(GetParam()); }
+};
+
+SimulatedSequence Simulated(const nlohmann::json& j) {
+  return Simulate(SimulationConfigFromJson(j, "suite simulation"));
+}
+
+TEST_P(TrackerSuite, FirstFrameIsTheWorld) {
+  const SimulatedSequence sim = Simulated({{"frames", 3}});
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  EXPECT_EQ(run.outputs[0].status, TrackingStatus::kReinitialized);
+  EXPECT_LT((run.outputs[0].cam_from_world.ToMatrix4() - Eigen::Matrix4d::Identity()).norm(), 1e-12);
+}
+
+TEST_P(TrackerSuite, NoiseFreeExactRecovery) {
+  if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker";
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const SimulatedSequence sim = Simulated({{"seed", seed}, {"noise", {{"endpoint_px", 0.0}}}});
+    auto tracker = Make();
+    const TrackRun run = RunTracker(*tracker, sim.sequence);
+    const PoseError e = ErrorAt(sim, run, static_cast<int>(run.outputs.size()) - 1);
+    EXPECT_LT(e.translation_m, 1e-6) << "seed " << seed;
+    EXPECT_LT(e.rotation_deg, 1e-4) << "seed " << seed;
+  }
+}
+
+TEST_P(TrackerSuite, StaticCameraReportsNoMotion) {
+  // A camera at rest seeing exact lines: no spurious motion on any frame (no drift, no
+  // velocity made up by the filter).
+  const SimulatedSequence sim = Simulated({{"motion", {{"type", "static"}}}, {"noise", {{"endpoint_px", 0.0}}}});
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  for (size_t k = 0; k < run.outputs.size(); ++k) {
+    const PoseError e = ErrorAt(sim, run, static_cast<int>(k));
+    ASSERT_LT(e.translation_m, 1e-6) << "frame " << k;
+    ASSERT_LT(e.rotation_deg, 1e-4) << "frame " << k;
+  }
+}
+
+TEST_P(TrackerSuite, FiniteOutputOnEveryFrameOfAHostileSequence) {
+  // Outliers, clipping, lines leaving the view, frames with nothing in them, lines seen in one
+  // image only, duplicated and degenerate segments.
+  SimulatedSequence sim = Simulated({{"scene", {{"type", "room"}}},
+                                     {"frames", 60},
+                                     {"outliers", {{"rate", 0.3}}},
+                                     {"noise", {{"endpoint_px", 2.0}}}});
+  StereoSequence& seq = sim.sequence;
+  seq.frames[5].left.clear();
+  seq.frames[5].right.clear();
+  seq.frames[6].right.clear();
+  for (int k = 20; k < 25; ++k) seq.frames[k].left.resize(std::min<size_t>(1, seq.frames[k].left.size()));
+  if (!seq.frames[30].left.empty()) {
+    LineObservation& o = seq.frames[30].left.front();
+    o.segment << 100.0, 100.0, 100.0, 100.0;  // zero length
+  }
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, seq);
+  ASSERT_EQ(run.outputs.size(), seq.frames.size());
+  for (size_t k = 0; k < run.outputs.size(); ++k) {
+    const TrackerOutput& o = run.outputs[k];
+    EXPECT_TRUE(IsFinite(o.cam_from_world)) << "frame " << k;
+    EXPECT_GE(o.features_used, 0);
+    EXPECT_LE(o.features_used, o.features_available) << "frame " << k;
+  }
+}
+
+TEST_P(TrackerSuite, DeterministicAcrossResets) {
+  const SimulatedSequence sim = Simulated({{"frames", 30}, {"outliers", {{"rate", 0.1}}}});
+  auto tracker = Make();
+  const TrackRun a = RunTracker(*tracker, sim.sequence);
+  const TrackRun b = RunTracker(*tracker, sim.sequence);
+  for (size_t k = 0; k < a.outputs.size(); ++k) {
+    EXPECT_EQ(a.outputs[k].cam_from_world.ToMatrix4(), b.outputs[k].cam_from_world.ToMatrix4()) << "frame " << k;
+  }
+}
+
+TEST_P(TrackerSuite, OptionsRoundTripThroughJson) {
+  const nlohmann::json options = Make()->Options();
+  const nlohmann::json again = CreateTracker(GetParam(), options)->Options();
+  EXPECT_EQ(options, again);
+  EXPECT_THROW(CreateTracker(GetParam(), {{"no_such_option", 1}}, "bad.json"), ConfigError);
+}
+
+INSTANTIATE_TEST_SUITE_P(Registered, TrackerSuite, ::testing::ValuesIn(RegisteredTrackerNames()),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+TEST(Registry, UnknownMethodNamesTheKnownOnes) {
+  try {
+    CreateTracker("no_such_method");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("trifocal_line_ekf"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace slt
