@@ -51,31 +51,18 @@ PlueckerLine StereoPairLine(const Rigid3d& right_from_left, const Eigen::Vector3
 
 void ImageLineInStereoPair(const Rigid3d& right_from_left, const Rigid3d& cam_from_ref,
                            const PlueckerLine& line_in_ref, bool with_line_jacobians, StereoLineImages* out) {
-  const Eigen::Matrix3d& r = cam_from_ref.rotation;
-  const Eigen::Vector3d& t = cam_from_ref.translation;
-  // The line in the current left camera (TransformPluecker, inlined: this runs per line and
-  // per iteration).
-  const Eigen::Vector3d m = r * line_in_ref.direction;
-  const Eigen::Vector3d n = r * line_in_ref.moment + t.cross(m);
-  out->left = n;
-  // Exp(d) moves the line as n += w x n + v x m, m += w x m:  d n / d [v; w] = [-[m]_x, -[n]_x].
-  out->left_d_pose.leftCols<3>() = -Skew(m);
-  out->left_d_pose.rightCols<3>() = -Skew(n);
-  // Right camera: n_r = Re n + te x (Re m). With Re [a]_x = [Re a]_x Re:
-  //   d n_r / d [v; w] = [-[Re m]_x Re, -([Re n]_x + [te]_x [Re m]_x) Re].
-  const Eigen::Matrix3d& re = right_from_left.rotation;
-  const Eigen::Vector3d& te = right_from_left.translation;
-  const Eigen::Vector3d re_m = re * m, re_n = re * n;
-  out->right = re_n + te.cross(re_m);
-  const Eigen::Matrix3d re_m_x = Skew(re_m);
-  out->right_d_pose.leftCols<3>().noalias() = -re_m_x * re;
-  out->right_d_pose.rightCols<3>().noalias() = -(Skew(re_n) + Skew(te) * re_m_x) * re;
+  const Rigid3d right_from_ref = right_from_left * cam_from_ref;
+  const PlueckerLine in_left = TransformPluecker(cam_from_ref, line_in_ref);
+  const PlueckerLine in_right = TransformPluecker(right_from_ref, line_in_ref);
+  out->left = in_left.moment;
+  out->right = in_right.moment;
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  out->left_d_pose = ImageLinePoseJacobianProduct<3>(identity, in_left);
+  // E Exp(d) M = Exp(Ad_E d) E M: the right camera is perturbed by Ad_E d.
+  out->right_d_pose = ImageLinePoseJacobianProduct<3>(identity, in_right) * Adjoint(right_from_left);
   if (with_line_jacobians) {
-    // d n / d [n_ref; d_ref] = [R, [t]_x R];  d n_r = Re d n + [te]_x Re R d d_ref.
-    out->left_d_line.leftCols<3>() = r;
-    out->left_d_line.rightCols<3>().noalias() = Skew(t) * r;
-    out->right_d_line.noalias() = re * out->left_d_line;
-    out->right_d_line.rightCols<3>().noalias() += Skew(te) * (re * r);
+    out->left_d_line = ImageLineLineJacobianProduct<3>(identity, cam_from_ref);
+    out->right_d_line = ImageLineLineJacobianProduct<3>(identity, right_from_ref);
   }
 }
 

@@ -43,10 +43,39 @@ PlueckerLine StereoPairLine(const Rigid3d& right_from_left, const Eigen::Vector3
                             const Eigen::Vector3d& right_line, Matrix63d* d_left = nullptr,
                             Matrix63d* d_right = nullptr, double* plane_sine = nullptr);
 
+// D d l / d [v; w] for the image l = n of a line (n, m) given in a camera's frame, under the
+// perturbation camera_from_ref <- Exp(d) camera_from_ref: the line moves as n += w x n + v x m,
+// m += w x m, so row i is [(m x a_i)^T, (n x a_i)^T] for the rows a_i of D. Forms no 3x6 matrix:
+// trackers need this product per line and per iteration.
+template <int K>
+Eigen::Matrix<double, K, 6> ImageLinePoseJacobianProduct(const Eigen::Matrix<double, K, 3>& d,
+                                                         const PlueckerLine& line_in_camera) {
+  Eigen::Matrix<double, K, 6> out;
+  for (int i = 0; i < K; ++i) {
+    const Eigen::Vector3d a = d.row(i).transpose();
+    out.template block<1, 3>(i, 0) = line_in_camera.direction.cross(a).transpose();
+    out.template block<1, 3>(i, 3) = line_in_camera.moment.cross(a).transpose();
+  }
+  return out;
+}
+
+// D d l / d [n_ref; d_ref] for the image l in camera_from_ref of a reference-frame line:
+// d l / d [n; d] = [R, [t]_x R], so D d l / d [n; d] = [D R, (D [t]_x) R].
+template <int K>
+Eigen::Matrix<double, K, 6> ImageLineLineJacobianProduct(const Eigen::Matrix<double, K, 3>& d,
+                                                         const Rigid3d& camera_from_ref) {
+  Eigen::Matrix<double, K, 6> out;
+  Eigen::Matrix<double, K, 3> d_t;  // D [t]_x: a^T [t]_x = (a x t)^T
+  for (int i = 0; i < K; ++i) d_t.row(i) = d.row(i).transpose().cross(camera_from_ref.translation).transpose();
+  out.template leftCols<3>().noalias() = d * camera_from_ref.rotation;
+  out.template rightCols<3>().noalias() = d_t * camera_from_ref.rotation;
+  return out;
+}
+
 // The images of a reference-frame line in the current left camera (cam_from_ref) and right
 // camera (right_from_left * cam_from_ref): normalised image lines, with the Jacobians with
 // respect to the pose perturbation cam_from_ref <- Exp(d) cam_from_ref and, when asked, to the
-// line [n; d].
+// line [n; d]. (The full matrices, for tests and tools; trackers use the products above.)
 struct StereoLineImages {
   Eigen::Vector3d left;
   Eigen::Vector3d right;

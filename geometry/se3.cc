@@ -49,12 +49,6 @@ Eigen::Matrix3d QMatrix(const Eigen::Vector3d& rho, const Eigen::Vector3d& phi) 
 
 }  // namespace
 
-Eigen::Matrix3d Skew(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d m;
-  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-  return m;
-}
-
 double RotationAngle(const Eigen::Matrix3d& rotation) {
   const Eigen::Vector3d axis_sin(rotation(2, 1) - rotation(1, 2), rotation(0, 2) - rotation(2, 0),
                                  rotation(1, 0) - rotation(0, 1));

@@ -21,8 +21,12 @@ using Matrix26d = Eigen::Matrix<double, 2, 6>;
 using Matrix36d = Eigen::Matrix<double, 3, 6>;
 using Matrix46d = Eigen::Matrix<double, 4, 6>;
 
-// [w]_x, so that Skew(w) * u = w.cross(u).
-Eigen::Matrix3d Skew(const Eigen::Vector3d& w);
+// [w]_x, so that Skew(w) * u = w.cross(u). Inline: it sits in every per-line Jacobian.
+inline Eigen::Matrix3d Skew(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return m;
+}
 
 // SO(3) exponential (Rodrigues) and logarithm; the log returns the axis-angle vector with
 // angle in [0, pi].

@@ -30,8 +30,11 @@ int main(int argc, char** argv) {
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "track: error: %s (see --help)\n", e.what());
+    return 2;
   }
 
   try {

@@ -6,39 +6,64 @@
 
 namespace slt {
 
-bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse) {
-  // a = L L^T.
-  double l[6][6] = {};
+bool SpdSolver6::Compute(const Matrix6d& a) {
   for (int j = 0; j < 6; ++j) {
     double d = a(j, j);
-    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+    for (int k = 0; k < j; ++k) d -= lower_(j, k) * lower_(j, k);
     if (!(d > 0.0)) return false;
-    l[j][j] = std::sqrt(d);
-    const double inv = 1.0 / l[j][j];
+    lower_(j, j) = std::sqrt(d);
+    inverse_diagonal_(j) = 1.0 / lower_(j, j);
     for (int i = j + 1; i < 6; ++i) {
       double s = a(i, j);
-      for (int k = 0; k < j; ++k) s -= l[i][k] * l[j][k];
-      l[i][j] = s * inv;
+      for (int k = 0; k < j; ++k) s -= lower_(i, k) * lower_(j, k);
+      lower_(i, j) = s * inverse_diagonal_(j);
     }
   }
+  return true;
+}
+
+Vector6d SpdSolver6::Solve(const Vector6d& b) const {
+  Vector6d y;
+  for (int i = 0; i < 6; ++i) {  // L y = b
+    double s = b(i);
+    for (int k = 0; k < i; ++k) s -= lower_(i, k) * y(k);
+    y(i) = s * inverse_diagonal_(i);
+  }
+  for (int i = 5; i >= 0; --i) {  // L^T x = y
+    double s = y(i);
+    for (int k = i + 1; k < 6; ++k) s -= lower_(k, i) * y(k);
+    y(i) = s * inverse_diagonal_(i);
+  }
+  return y;
+}
+
+Matrix6d SpdSolver6::Inverse() const {
   // M = L^-1 (lower triangular), then a^-1 = M^T M.
-  double m[6][6] = {};
+  Matrix6d m = Matrix6d::Zero();
   for (int j = 0; j < 6; ++j) {
-    m[j][j] = 1.0 / l[j][j];
+    m(j, j) = inverse_diagonal_(j);
     for (int i = j + 1; i < 6; ++i) {
       double s = 0.0;
-      for (int k = j; k < i; ++k) s -= l[i][k] * m[k][j];
-      m[i][j] = s / l[i][i];
+      for (int k = j; k < i; ++k) s -= lower_(i, k) * m(k, j);
+      m(i, j) = s * inverse_diagonal_(i);
     }
   }
+  Matrix6d inverse;
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j <= i; ++j) {
       double s = 0.0;
-      for (int k = i; k < 6; ++k) s += m[k][i] * m[k][j];
-      (*inverse)(i, j) = s;
-      (*inverse)(j, i) = s;
+      for (int k = i; k < 6; ++k) s += m(k, i) * m(k, j);
+      inverse(i, j) = s;
+      inverse(j, i) = s;
     }
   }
+  return inverse;
+}
+
+bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse) {
+  SpdSolver6 solver;
+  if (!solver.Compute(a)) return false;
+  *inverse = solver.Inverse();
   return true;
 }
 
@@ -63,7 +88,7 @@ bool WeightedFeature::FactorCovariance() { return CholeskyLower4(block.covarianc
 
 void WeightedFeature::Whiten(const Eigen::Vector4d& residual, const Eigen::Matrix<double, 4, 6>& jacobian,
                              Eigen::Vector4d* rw, Eigen::Matrix<double, 4, 6>* jw) const {
-  Eigen::Matrix<double, 4, 7> b;
+  Eigen::Matrix<double, 4, 7, Eigen::RowMajor> b;  // rows contiguous for the substitution
   b.col(0) = residual;
   b.rightCols<6>() = jacobian;
   ForwardSubstitute4(sqrt_covariance, &b);

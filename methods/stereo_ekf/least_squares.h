@@ -33,13 +33,14 @@ struct WeightedFeature {
 // Cholesky factor of a 4x4 symmetric positive-definite matrix, unrolled for the size; false if
 // not positive definite.
 bool CholeskyLower4(const Eigen::Matrix4d& a, Eigen::Matrix4d* lower);
-// Solves L X = B in place (L lower triangular 4x4, B 4xN).
-template <int N>
-void ForwardSubstitute4(const Eigen::Matrix4d& l, Eigen::Matrix<double, 4, N>* b) {
-  for (int i = 0; i < 4; ++i) {
-    for (int k = 0; k < i; ++k) b->row(i) -= l(i, k) * b->row(k);
-    b->row(i) /= l(i, i);
-  }
+// Solves L X = B in place (L lower triangular 4x4, B 4xN), unrolled over the rows.
+template <int N, int Options>
+void ForwardSubstitute4(const Eigen::Matrix4d& l, Eigen::Matrix<double, 4, N, Options>* b) {
+  Eigen::Matrix<double, 4, N, Options>& x = *b;
+  x.row(0) *= 1.0 / l(0, 0);
+  x.row(1) = (x.row(1) - l(1, 0) * x.row(0)) * (1.0 / l(1, 1));
+  x.row(2) = (x.row(2) - l(2, 0) * x.row(0) - l(2, 1) * x.row(1)) * (1.0 / l(2, 2));
+  x.row(3) = (x.row(3) - l(3, 0) * x.row(0) - l(3, 1) * x.row(1) - l(3, 2) * x.row(2)) * (1.0 / l(3, 3));
 }
 
 // Sums of J^T W^T W J, J^T W^T W r and r^T W^T W r over blocks.
@@ -49,16 +50,34 @@ struct NormalEquations {
   double cost = 0.0;
 
   void AddWhitened(const Eigen::Vector4d& rw, const Eigen::Matrix<double, 4, 6>& jw) {
-    hessian.noalias() += jw.transpose().lazyProduct(jw);
+    // Upper triangle only (21 of 36 entries); FullHessian() mirrors it.
+    for (int c = 0; c < 6; ++c) {
+      for (int r = 0; r <= c; ++r) hessian(r, c) += jw.col(r).dot(jw.col(c));
+    }
     gradient.noalias() += jw.transpose() * rw;
     cost += rw.squaredNorm();
   }
-  const Matrix6d& FullHessian() const { return hessian; }
+  Matrix6d FullHessian() const { return hessian.selfadjointView<Eigen::Upper>(); }
 };
 
-// Inverse of a symmetric positive-definite 6x6 matrix through its Cholesky factor, unrolled
-// for the fixed size (Eigen's LDLT/LLT solve with a matrix right-hand side takes a generic
-// blocked path that costs several times more at this size). False if not positive definite.
+// Cholesky factorisation of a symmetric positive-definite 6x6 matrix, with solves and the
+// inverse written out for the fixed size (Eigen's LDLT/LLT with a matrix right-hand side takes
+// a generic blocked path that costs several times more at this size).
+class SpdSolver6 {
+ public:
+  // False if `a` is not positive definite.
+  bool Compute(const Matrix6d& a);
+  Vector6d Solve(const Vector6d& b) const;
+  Matrix6d Inverse() const;
+  // The lower-triangular factor L (a = L L^T); only the lower triangle is meaningful.
+  Matrix6d lower() const { return lower_.triangularView<Eigen::Lower>(); }
+
+ private:
+  Matrix6d lower_;
+  Vector6d inverse_diagonal_;
+};
+
+// Convenience: the inverse, false if not positive definite.
 bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse);
 
 // Squared whitened residual of feature `index` at `cam_from_ref` (false if degenerate there).

@@ -42,7 +42,14 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
   if (static_cast<int>(features_.size()) < n) features_.resize(n);
   valid_.clear();
   inliers_.clear();
-  const Matrix6d Ppp = filter_.PoseCovariance();
+  // P_pp is factored once per frame: its factor U (P = U U^T) gives J P J^T = (J U)(J U)^T for
+  // the gate, its inverse the prior information of the update.
+  if (prior_solver_.Compute(filter_.PoseCovariance())) {
+    prior_information_ = prior_solver_.Inverse();
+  } else {
+    prior_information_ = filter_.PoseCovariance().ldlt().solve(Matrix6d::Identity());
+  }
+  const Matrix6d p_lower = prior_solver_.lower();
   for (int i = 0; i < n; ++i) {
     WeightedFeature& f = features_[i];
     f.valid = model_->Evaluate(i, predicted, true, &f.block) && f.block.residual.allFinite() &&
@@ -53,8 +60,9 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
     f.Whiten(f.block.residual, f.block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
     valid_.push_back(i);
     // Eq. 20 with S = J P J^T + R.
+    const Eigen::Matrix<double, 4, 6> ju = f.block.jacobian.lazyProduct(p_lower);
     Eigen::Matrix4d S = f.block.covariance;
-    S.noalias() += f.block.jacobian * Ppp.lazyProduct(f.block.jacobian.transpose());
+    S.noalias() += ju.lazyProduct(ju.transpose());
     Eigen::Matrix4d s_lower;
     f.nis = std::numeric_limits<double>::infinity();
     if (CholeskyLower4(S, &s_lower)) {
@@ -68,25 +76,30 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
 
 double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization) {
   const Rigid3d predicted = filter_.cam_from_ref();
-  Matrix6d prior_information;
-  if (!InvertSpd6(filter_.PoseCovariance(), &prior_information)) {
-    prior_information = filter_.PoseCovariance().ldlt().solve(Matrix6d::Identity());
+  if (!blocks_at_linearization) {
+    // The filter may have been re-seeded since EvaluateAtPrediction: refresh the prior.
+    if (!InvertSpd6(filter_.PoseCovariance(), &prior_information_)) {
+      prior_information_ = filter_.PoseCovariance().ldlt().solve(Matrix6d::Identity());
+    }
   }
+  const Matrix6d& prior_information = prior_information_;
   Vector6d delta = blocks_at_linearization ? Vector6d::Zero() : LogSE3(linearization * predicted.Inverse());
   NormalEquations ne;
   Vector6d delta_k = delta;
-  Matrix6d posterior = filter_.PoseCovariance();  // kept if the update cannot be solved
+  SpdSolver6 solver, solved;  // `solved`: the factor of the last successful solve
+  bool any_solved = false;
   FeatureBlock block;
   for (int k = 0; k < options_.max_iterations; ++k) {
     delta_k = delta;
-    const Rigid3d pose = ExpSE3(delta) * predicted;
+    const bool reuse = k == 0 && blocks_at_linearization;
+    const Rigid3d pose = reuse ? predicted : ExpSE3(delta) * predicted;
     // The model's Jacobian is taken at the iterate, with respect to a perturbation there; using
     // it for d (instead of J J_l(d_k)) changes the convergence rate only: at the fixed point the
     // two differ by O(|d|^2).
     ne = NormalEquations();
     for (int i : inliers_) {
       WeightedFeature& f = features_[i];
-      if (!(k == 0 && blocks_at_linearization)) {
+      if (!reuse) {
         if (!model_->Evaluate(i, pose, false, &block)) {
           // Degenerate at this pose: drop it from this iteration's sums.
           f.whitened_residual.setZero();
@@ -99,9 +112,9 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     }
     // Normal equations of the MAP cost linearised at delta_k (docs/derivations.md):
     // (H + P^-1) delta = H delta_k - g.
-    const Matrix6d& H = ne.FullHessian();
-    if (!InvertSpd6(H + prior_information, &posterior)) break;
-    Vector6d next = posterior * (H * delta_k - ne.gradient);
+    const Matrix6d H = ne.FullHessian();
+    if (!solver.Compute(H + prior_information)) break;
+    Vector6d next = solver.Solve(H * delta_k - ne.gradient);
     if (!next.allFinite()) break;
     // Re-gate at the solution: a feature that passed the gate at the prediction but whose
     // linearised posterior cost exceeds it is an outlier the prior let through; drop it and
@@ -109,14 +122,19 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     if (RemovePosteriorOutliers(next - delta_k)) {
       ne = NormalEquations();
       for (int i : inliers_) ne.AddWhitened(features_[i].whitened_residual, features_[i].whitened_jacobian);
-      if (inliers_.size() < 2 || !InvertSpd6(ne.FullHessian() + prior_information, &posterior)) break;
-      next = posterior * (ne.FullHessian() * delta_k - ne.gradient);
+      const Matrix6d h = ne.FullHessian();
+      if (inliers_.size() < 2 || !solver.Compute(h + prior_information)) break;
+      next = solver.Solve(h * delta_k - ne.gradient);
       if (!next.allFinite()) break;
     }
     delta = next;
+    solved = solver;
+    any_solved = true;
     if ((delta - delta_k).norm() < options_.iteration_tolerance) break;
   }
-  filter_.Correct(delta, posterior, prior_information);
+  // Nothing solvable (degenerate information): keep the prediction.
+  if (!any_solved) return std::numeric_limits<double>::infinity();
+  filter_.Correct(delta, solved.Inverse(), prior_information);
   // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
   const Vector6d step = delta - delta_k;
   posterior_costs_.clear();
@@ -218,15 +236,16 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     }
   }
 
-  int used = static_cast<int>(inliers_.size());
-  if (used < 2) {
+  const double cost = inliers_.size() >= 2 ? IteratedUpdate(linearization, blocks_at_linearization)
+                                           : std::numeric_limits<double>::infinity();
+  int used = static_cast<int>(inliers_.size());  // less the outliers re-gated at the solution
+  if (!std::isfinite(cost) || used < 2) {
     // Nothing to measure with: keep the prediction and say so.
     healthy_ = false;
+    used = 0;
     ++counters_.lost_frames;
     out.status = TrackingStatus::kLost;
   } else {
-    const double cost = IteratedUpdate(linearization, blocks_at_linearization);
-    used = static_cast<int>(inliers_.size());  // less the outliers re-gated at the solution
     // Healthy when the posterior cost is plausible for its degrees of freedom: below
     // max_normalized_cost per degree of freedom, and never below the 99.9 % chi-square quantile
     // (Wilson-Hilferty), which matters for few features.
@@ -235,7 +254,6 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     const double chi2_999 = dof * std::pow(1.0 - h + 3.09 * std::sqrt(h), 3.0);
     healthy_ = cost <= std::max(options_.max_normalized_cost * dof, chi2_999);
     AdaptNoiseScale();
-    if (getenv("SLT_DEBUG")) fprintf(stderr, "frame %d valid %d gated %d used %d cost/dof %.3f s %.3f robust %d reseeds %d\n", counters_.frames, valid, gated, used, cost/(4.0*used-6), std::sqrt(noise_scale_sq_), counters_.robust_solves, counters_.reseeds);
     out.status = TrackingStatus::kTracking;
   }
   previous_inliers_ = used;
@@ -243,9 +261,10 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     // Defensive: never hand out a non-finite pose. Restart from the last good pose.
     filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4);
     healthy_ = false;
+    used = 0;
     out.status = TrackingStatus::kLost;
   }
-  out.features_used = out.status == TrackingStatus::kLost ? 0 : used;
+  out.features_used = used;
   out.cam_from_world = filter_.cam_from_ref() * ref_from_world_;
   if (MaybeRebootstrap(frame, out.features_used)) out.status = TrackingStatus::kReinitialized;
   return out;

@@ -86,6 +86,8 @@ class StereoEkfTracker : public PoseTracker {
   std::vector<int> valid_;
   std::vector<int> inliers_;
   std::vector<double> posterior_costs_;
+  SpdSolver6 prior_solver_;        // P_pp of this frame
+  Matrix6d prior_information_;     // P_pp^-1
   std::vector<Rigid3d> starts_;
   RobustSolveResult robust_result_;
 };

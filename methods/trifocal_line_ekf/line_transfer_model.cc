@@ -77,8 +77,21 @@ LineTransferModel::LineTransferModel(const LineTransferOptions& options) : optio
   covariance_floor_ = floor.array().square();
 }
 
+const Rigid3d& LineTransferModel::RightFromRef(const Rigid3d& cam_from_ref) const {
+  // Every feature of a frame is evaluated at the same pose: compose once per pose.
+  if (cam_from_ref.rotation != cached_cam_from_ref_.rotation ||
+      cam_from_ref.translation != cached_cam_from_ref_.translation) {
+    cached_cam_from_ref_ = cam_from_ref;
+    cached_right_from_ref_ = rig_.right_from_left * cam_from_ref;
+  }
+  return cached_right_from_ref_;
+}
+
 void LineTransferModel::Reset(const StereoRig& rig) {
   rig_ = rig;
+  right_adjoint_ = Adjoint(rig.right_from_left);
+  cached_cam_from_ref_ = Rigid3d();
+  cached_right_from_ref_ = rig.right_from_left;
   left_pixel_from_normalized_ = PixelFromNormalizedLineMatrix(rig.left);
   right_pixel_from_normalized_ = PixelFromNormalizedLineMatrix(rig.right);
   reference_.clear();
@@ -108,15 +121,22 @@ bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamer
   return true;
 }
 
+const std::vector<LineObservation>& LineTransferModel::SortedById(const std::vector<LineObservation>& observations,
+                                                                  std::vector<LineObservation>* scratch) {
+  // Files and the simulator usually list lines by id already: only copy and sort otherwise.
+  if (std::is_sorted(observations.begin(), observations.end(), ById)) return observations;
+  scratch->assign(observations.begin(), observations.end());
+  std::sort(scratch->begin(), scratch->end(), ById);
+  return *scratch;
+}
+
 void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out) {
-  left_sorted_.assign(frame.left.begin(), frame.left.end());
-  right_sorted_.assign(frame.right.begin(), frame.right.end());
-  std::sort(left_sorted_.begin(), left_sorted_.end(), ById);
-  std::sort(right_sorted_.begin(), right_sorted_.end(), ById);
+  const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
+  const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
   out->clear();
-  auto l = left_sorted_.begin();
-  auto r = right_sorted_.begin();
-  while (l != left_sorted_.end() && r != right_sorted_.end()) {
+  auto l = left.begin();
+  auto r = right.begin();
+  while (l != left.end() && r != right.end()) {
     if (l->id < r->id) {
       ++l;
     } else if (r->id < l->id) {
@@ -238,17 +258,20 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
     // with the current camera as the tensor's first view (geometry/plucker.h).
     const ReferenceLine& line = reference_lines_[match.reference];
     if (line.plane_sine < min_plane_sine_) return false;
-    StereoLineImages images;
-    ImageLineInStereoPair(rig_.right_from_left, cam_from_ref, line.line, propagate, &images);
+    const Rigid3d& right_from_ref = RightFromRef(cam_from_ref);
+    const PlueckerLine in_left = TransformPluecker(cam_from_ref, line.line);
+    const PlueckerLine in_right = TransformPluecker(right_from_ref, line.line);
     block->residual.head<2>() =
-        Residual(images.left, cur.left, left_pixel_from_normalized_, rig_.left.fx, &d1, want_m1);
+        Residual(in_left.moment, cur.left, left_pixel_from_normalized_, rig_.left.fx, &d1, want_m1);
     block->residual.tail<2>() =
-        Residual(images.right, cur.right, right_pixel_from_normalized_, rig_.right.fx, &d2, want_m2);
-    block->jacobian.topRows<2>().noalias() = d1 * images.left_d_pose;
-    block->jacobian.bottomRows<2>().noalias() = d2 * images.right_d_pose;
+        Residual(in_right.moment, cur.right, right_pixel_from_normalized_, rig_.right.fx, &d2, want_m2);
+    block->jacobian.topRows<2>() = ImageLinePoseJacobianProduct<2>(d1, in_left);
+    // E Exp(d) M = Exp(Ad_E d) E M: the right camera is perturbed by Ad_E d.
+    block->jacobian.bottomRows<2>().noalias() =
+        ImageLinePoseJacobianProduct<2>(d2, in_right).lazyProduct(right_adjoint_);
     if (propagate) {
-      const Eigen::Matrix<double, 2, 6> d1_line = d1 * images.left_d_line;
-      const Eigen::Matrix<double, 2, 6> d2_line = d2 * images.right_d_line;
+      const Eigen::Matrix<double, 2, 6> d1_line = ImageLineLineJacobianProduct<2>(d1, cam_from_ref);
+      const Eigen::Matrix<double, 2, 6> d2_line = ImageLineLineJacobianProduct<2>(d2, right_from_ref);
       noise_jacobian.block<2, 4>(0, 0).noalias() = d1_line * line.line_d_left_segment;
       noise_jacobian.block<2, 4>(0, 4).noalias() = d1_line * line.line_d_right_segment;
       noise_jacobian.block<2, 4>(0, 8) = m1;

@@ -102,6 +102,9 @@ class LineTransferModel final : public FeatureModel {
     int current;    // index into current_
   };
 
+  // `observations` if sorted by id, else a sorted copy in *scratch.
+  static const std::vector<LineObservation>& SortedById(const std::vector<LineObservation>& observations,
+                                                        std::vector<LineObservation>* scratch);
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;
@@ -112,6 +115,9 @@ class LineTransferModel final : public FeatureModel {
                            const Eigen::Matrix3d& pixel_from_normalized, double fx,
                            Eigen::Matrix<double, 2, 3>* d_line, Eigen::Matrix<double, 2, 4>* d_measured) const;
 
+  // right_from_left * cam_from_ref, cached for the last pose asked.
+  const Rigid3d& RightFromRef(const Rigid3d& cam_from_ref) const;
+
   LineTransferOptions options_;
   bool paper_direction_ = true;
   bool distance_residual_ = true;
@@ -120,6 +126,9 @@ class LineTransferModel final : public FeatureModel {
   StereoRig rig_;
   Eigen::Matrix3d left_pixel_from_normalized_;
   Eigen::Matrix3d right_pixel_from_normalized_;
+  Matrix6d right_adjoint_;  // Ad(right_from_left)
+  mutable Rigid3d cached_cam_from_ref_;
+  mutable Rigid3d cached_right_from_ref_;
   Eigen::Matrix4d fixed_covariance_;
   Eigen::Vector4d covariance_floor_;
 

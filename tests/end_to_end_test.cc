@@ -1,0 +1,109 @@
+// The command-line programs end to end: simulate -> track -> evaluate, a sequence written by
+// another program (hand-written file), and the one-line errors.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/json_reader.h"
+#include "dataset/trajectory.h"
+
+namespace slt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Result RunCommand(const std::string& command) {
+  const std::string full = command + " 2>&1";
+  FILE* pipe = popen(full.c_str(), "r");
+  Result r{-1, ""};
+  if (!pipe) return r;
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string Bin(const std::string& name) { return std::string(SLT_BINARY_DIR) + "/" + name; }
+
+class EndToEnd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("slt_e2e_" + std::to_string(::getpid()) + "_" +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(EndToEnd, SimulateTrackEvaluate) {
+  {
+    std::ofstream(Path("sim.json")) << R"({"frames": 50, "noise": {"endpoint_px": 1.0}})";
+  }
+  Result r = RunCommand(Bin("simulate") + " " + Path("sim.json") + " --out " + Path("run"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(Path("run/seq.json")));
+  ASSERT_TRUE(fs::exists(Path("run/gt.tum")));
+
+  for (const std::string method : {"trifocal_line_ekf", "constant_pose"}) {
+    const std::string traj = Path("run/" + method + ".tum");
+    r = RunCommand(Bin("track") + " --method " + method + " --input " + Path("run/seq.json") + " --output " + traj +
+            " --kitti " + Path("run/" + method + ".kitti") + " --log " + Path("run/" + method + ".csv"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(ReadTumTrajectory(traj).size(), 50u);
+    r = RunCommand(Bin("evaluate") + " --gt " + Path("run/gt.tum") + " --est " + traj + " --out " +
+            Path("run/" + method + ".metrics.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json metrics = ReadJsonFile(Path("run/" + method + ".metrics.json"));
+    const double final_rot = metrics.at("final_rot_err_deg").get<double>();
+    if (method == "trifocal_line_ekf") {
+      EXPECT_LT(final_rot, 0.3) << r.output;
+      EXPECT_LT(metrics.at("ate_trans_m").at("rmse").get<double>(), 0.005);
+    } else {
+      EXPECT_GT(final_rot, 0.5) << "the trivial tracker should not be accurate on a moving camera";
+    }
+  }
+}
+
+TEST_F(EndToEnd, TracksAHandWrittenSequence) {
+  const std::string input = std::string(SLT_SOURCE_DIR) + "/dataset/testdata/handwritten.stereo-lines.json";
+  const Result r = RunCommand(Bin("track") + " --method trifocal_line_ekf --input " + input + " --output " + Path("t.tum"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trajectory t = ReadTumTrajectory(Path("t.tum"));
+  ASSERT_FALSE(t.empty());
+  for (const TimedPose& p : t) EXPECT_TRUE(p.world_from_cam.translation.allFinite());
+}
+
+TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
+  Result r = RunCommand(Bin("track") + " --method no_such --input x.json --output y.tum");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("unknown method 'no_such'"), std::string::npos) << r.output;
+  {
+    std::ofstream(Path("bad.json")) << R"({"filter": {"max_iterations": 0}})";
+  }
+  r = RunCommand(Bin("track") + " --method trifocal_line_ekf --config " + Path("bad.json") + " --print-config");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find(Path("bad.json") + ": key 'filter.max_iterations'"), std::string::npos) << r.output;
+  r = RunCommand(Bin("track") + " --method trifocal_line_ekf --input " + Path("missing.json") + " --output " + Path("o.tum"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("missing.json"), std::string::npos) << r.output;
+  r = RunCommand(Bin("track") + " --bogus-flag");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = RunCommand(Bin("track") + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--method"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace slt
