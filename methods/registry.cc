@@ -4,6 +4,7 @@
 #include "methods/constant_pose/constant_pose_tracker.h"
 #include "methods/pose_tracker.h"
 #include "methods/trifocal_line_ekf/trifocal_line_ekf.h"
+#include "methods/yu_point_ekf/yu_point_ekf.h"
 
 namespace slt {
 
@@ -11,6 +12,7 @@ const std::vector<TrackerInfo>& RegisteredTrackers() {
   // One line per tracker.
   static const std::vector<TrackerInfo> trackers = {
       TrifocalLineEkfInfo(),
+      YuPointEkfInfo(),
       ConstantPoseTrackerInfo(),
   };
   return trackers;

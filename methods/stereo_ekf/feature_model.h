@@ -29,13 +29,14 @@ class FeatureModel {
 
   virtual void Reset(const StereoRig& rig) = 0;
   // Makes `frame` the reference pair (I_1, I'_1). Returns the number of stereo-matched features
-  // it holds.
+  // it holds that can be measured (not degenerate): the count feature replacement compares
+  // with.
   virtual int SetReference(const StereoFrame& frame) = 0;
   // Matches `frame` against the reference; features are then indexed 0 .. NumFeatures()-1.
   virtual int SetCurrent(const StereoFrame& frame) = 0;
   virtual int NumFeatures() const = 0;
-  // Number of stereo-matched features in the frame given to the last SetCurrent: how many the
-  // frame would hold if it became the reference.
+  // Number of measurable stereo-matched features in the frame given to the last SetCurrent: what
+  // SetReference would return for it.
   virtual int CurrentStereoFeatures() const = 0;
   // Evaluates feature `index` at `cam_from_ref`. Returns false when the feature cannot be
   // measured at this pose (degenerate geometry); the block is then unspecified.

@@ -37,16 +37,22 @@ void PoseVelocityFilter::Predict() {
   const Matrix6d ad = Adjoint(step);
   // J_l to first order: per-frame twists are small and it only enters the covariance.
   const Matrix6d jl = LeftJacobianSE3FirstOrder(velocity_);
+  // With F = [[A, B], [0, I]]: Y = A P_pv + B P_vv is the new P_pv, and
+  // P_pp <- (A P_pp + B P_vp) A^T + Y B^T (six 6x6 products).
   const Matrix6d Ppp = covariance_.topLeftCorner<6, 6>();
   const Matrix6d Ppv = covariance_.topRightCorner<6, 6>();
   const Matrix6d Pvv = covariance_.bottomRightCorner<6, 6>();
-  const Matrix6d new_pv = ad * Ppv + jl * Pvv;
-  const Matrix6d cross = ad * Ppv * jl.transpose();
-  const Matrix6d new_pp =
-      ad * Ppp * ad.transpose() + cross + cross.transpose() + jl * Pvv * jl.transpose();
+  Matrix6d x, y;
+  x.noalias() = ad.lazyProduct(Ppp);
+  x.noalias() += jl.lazyProduct(Ppv.transpose());
+  y.noalias() = ad.lazyProduct(Ppv);
+  y.noalias() += jl.lazyProduct(Pvv);
+  Matrix6d new_pp;
+  new_pp.noalias() = x.lazyProduct(ad.transpose());
+  new_pp.noalias() += y.lazyProduct(jl.transpose());
   covariance_.topLeftCorner<6, 6>() = 0.5 * (new_pp + new_pp.transpose());
-  covariance_.topRightCorner<6, 6>() = new_pv;
-  covariance_.bottomLeftCorner<6, 6>() = new_pv.transpose();
+  covariance_.topRightCorner<6, 6>() = y;
+  covariance_.bottomLeftCorner<6, 6>() = y.transpose();
 
   previous_cam_from_ref_ = cam_from_ref_;
   cam_from_ref_ = step * cam_from_ref_;
@@ -54,11 +60,15 @@ void PoseVelocityFilter::Predict() {
 
 void PoseVelocityFilter::Correct(const Vector6d& delta, const Matrix6d& posterior_pose_covariance,
                                  const Matrix6d& prior_pose_information) {
-  const Matrix6d Ppp = covariance_.topLeftCorner<6, 6>();
-  const Matrix6d G = covariance_.bottomLeftCorner<6, 6>() * prior_pose_information;
-  velocity_ += G * delta;
-  Matrix6d Pvv = covariance_.bottomRightCorner<6, 6>() - G * (Ppp - posterior_pose_covariance) * G.transpose();
-  const Matrix6d new_pvp = G * posterior_pose_covariance;
+  const Matrix6d Pvp = covariance_.bottomLeftCorner<6, 6>();
+  Matrix6d G;
+  G.noalias() = Pvp.lazyProduct(prior_pose_information);
+  velocity_.noalias() += G * delta;
+  Matrix6d new_pvp;
+  new_pvp.noalias() = G.lazyProduct(posterior_pose_covariance);
+  // G (P_pp - P_pp+) G^T = (P_vp - G P_pp+) G^T, since G P_pp = P_vp.
+  Matrix6d Pvv = covariance_.bottomRightCorner<6, 6>();
+  Pvv.noalias() -= (Pvp - new_pvp).lazyProduct(G.transpose());
   covariance_.topLeftCorner<6, 6>() = 0.5 * (posterior_pose_covariance + posterior_pose_covariance.transpose());
   covariance_.bottomLeftCorner<6, 6>() = new_pvp;
   covariance_.topRightCorner<6, 6>() = new_pvp.transpose();

@@ -96,6 +96,15 @@ void StereoEkfOptions::Check(const std::string& where, const std::string& path) 
   if (!(min_feature_fraction >= 0.0 && min_feature_fraction <= 1.0)) fail("min_feature_fraction", "must be in [0, 1]");
 }
 
+void ApplyPaperPreset(StereoEkfOptions* o) {
+  o->state = "velocity";
+  o->max_iterations = 1;
+  o->robust = false;
+  o->adaptive_noise = false;
+  o->min_feature_fraction = 0.0;
+  o->count_features = "gated";
+}
+
 void ReadStereoEkfOptions(JsonReader& r, StereoEkfOptions* o) {
   r.Get("state", &o->state)
       .Get("integration", &o->integration)

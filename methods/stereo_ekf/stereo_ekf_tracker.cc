@@ -44,12 +44,16 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
   inliers_.clear();
   // P_pp is factored once per frame: its factor U (P = U U^T) gives J P J^T = (J U)(J U)^T for
   // the gate, its inverse the prior information of the update.
+  Matrix6d p_lower;
   if (prior_solver_.Compute(filter_.PoseCovariance())) {
     prior_information_ = prior_solver_.Inverse();
+    p_lower = prior_solver_.lower();
   } else {
-    prior_information_ = filter_.PoseCovariance().ldlt().solve(Matrix6d::Identity());
+    // Not positive definite (should not happen): regularise rather than fail.
+    const Matrix6d p = filter_.PoseCovariance() + 1e-12 * Matrix6d::Identity();
+    prior_information_ = p.ldlt().solve(Matrix6d::Identity());
+    p_lower = p.llt().matrixL();
   }
-  const Matrix6d p_lower = prior_solver_.lower();
   for (int i = 0; i < n; ++i) {
     WeightedFeature& f = features_[i];
     f.valid = model_->Evaluate(i, predicted, true, &f.block) && f.block.residual.allFinite() &&
@@ -59,16 +63,21 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
     if (!(f.valid = f.FactorCovariance())) continue;
     f.Whiten(f.block.residual, f.block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
     valid_.push_back(i);
-    // Eq. 20 with S = J P J^T + R.
-    const Eigen::Matrix<double, 4, 6> ju = f.block.jacobian.lazyProduct(p_lower);
-    Eigen::Matrix4d S = f.block.covariance;
-    S.noalias() += ju.lazyProduct(ju.transpose());
-    Eigen::Matrix4d s_lower;
-    f.nis = std::numeric_limits<double>::infinity();
-    if (CholeskyLower4(S, &s_lower)) {
-      Eigen::Matrix<double, 4, 1> r = f.block.residual;
-      ForwardSubstitute4(s_lower, &r);
-      f.nis = r.squaredNorm();
+    // Eq. 20 with S = J P J^T + R. S >= R, so r^T S^-1 r <= r^T R^-1 r = |L^-1 r|^2, which the
+    // whitening has just computed: a feature inside the gate by that bound is inside by eq. 20,
+    // and S is only formed for the others.
+    f.nis = f.whitened_residual.squaredNorm();
+    if (f.nis >= gate_) {
+      const Eigen::Matrix<double, 4, 6> ju = f.block.jacobian.lazyProduct(p_lower);
+      Eigen::Matrix4d S = f.block.covariance;
+      S.noalias() += ju.lazyProduct(ju.transpose());
+      Eigen::Matrix4d s_lower;
+      f.nis = std::numeric_limits<double>::infinity();
+      if (CholeskyLower4(S, &s_lower)) {
+        Eigen::Matrix<double, 4, 1> r = f.block.residual;
+        ForwardSubstitute4(s_lower, &r);
+        f.nis = r.squaredNorm();
+      }
     }
     if (f.nis < gate_) inliers_.push_back(i);
   }
@@ -130,7 +139,10 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     delta = next;
     solved = solver;
     any_solved = true;
-    if ((delta - delta_k).norm() < options_.iteration_tolerance) break;
+    // Re-linearising moves the solution by O(|step|^2): stop once the step is small against the
+    // measurement noise (the tolerance scales with the noise scale s, so noise-free data, where
+    // s is small, still iterate to exactness).
+    if ((delta - delta_k).norm() < options_.iteration_tolerance * std::sqrt(noise_scale_sq_)) break;
   }
   // Nothing solvable (degenerate information): keep the prediction.
   if (!any_solved) return std::numeric_limits<double>::infinity();
@@ -149,14 +161,17 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
 }
 
 bool StereoEkfTracker::RemovePosteriorOutliers(const Vector6d& step) {
-  const size_t before = inliers_.size();
-  inliers_.erase(std::remove_if(inliers_.begin(), inliers_.end(),
-                                [&](int i) {
-                                  const WeightedFeature& f = features_[i];
-                                  return (f.whitened_residual + f.whitened_jacobian * step).squaredNorm() >= gate_;
-                                }),
-                 inliers_.end());
-  return inliers_.size() != before;
+  auto outside = [&](int i) {
+    const WeightedFeature& f = features_[i];
+    return (f.whitened_residual + f.whitened_jacobian * step).squaredNorm() >= gate_;
+  };
+  // A few features far off the solution are outliers; most of them are not -- then the noise
+  // model is too tight (or the model does not fit, e.g. a wrong focal length) and dropping
+  // them would leave nothing to measure with.
+  const auto count = std::count_if(inliers_.begin(), inliers_.end(), outside);
+  if (count == 0 || 2 * count > static_cast<std::ptrdiff_t>(inliers_.size())) return false;
+  inliers_.erase(std::remove_if(inliers_.begin(), inliers_.end(), outside), inliers_.end());
+  return true;
 }
 
 void StereoEkfTracker::AdaptNoiseScale() {
@@ -240,7 +255,12 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
                                            : std::numeric_limits<double>::infinity();
   int used = static_cast<int>(inliers_.size());  // less the outliers re-gated at the solution
   if (!std::isfinite(cost) || used < 2) {
-    // Nothing to measure with: keep the prediction and say so.
+    // Nothing to measure with: keep the prediction and say so. If there were measurable
+    // features but none passed the gate, the noise model may be too tight for the data: widen it
+    // so that the gate can let them in again.
+    if (valid >= 2 && options_.adaptive_noise) {
+      noise_scale_sq_ = std::min(noise_scale_sq_ * 4.0, options_.max_noise_scale * options_.max_noise_scale);
+    }
     healthy_ = false;
     used = 0;
     ++counters_.lost_frames;

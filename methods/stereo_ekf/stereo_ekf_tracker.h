@@ -92,4 +92,36 @@ class StereoEkfTracker : public PoseTracker {
   RobustSolveResult robust_result_;
 };
 
+// Creates a StereoEkfTracker from the options JSON every stereo EKF tracker takes:
+//   {"preset": "default" | "paper", "filter": {StereoEkfOptions}, "measurement": {model options}}
+// "paper" applies ApplyPaperPreset and `paper_measurement` before the file's own values, which
+// override them. `read_measurement(JsonReader&, MeasurementOptions*)` reads and checks the
+// model's part, `to_json` echoes it, `make_model(const MeasurementOptions&)` builds the model.
+template <typename MeasurementOptions, typename PaperMeasurement, typename ReadMeasurement, typename ToJson,
+          typename MakeModel>
+std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, const std::string& where,
+                                                    PaperMeasurement paper_measurement,
+                                                    ReadMeasurement read_measurement, ToJson to_json,
+                                                    MakeModel make_model) {
+  JsonReader reader(json, where);
+  std::string preset = "default";
+  reader.Get("preset", &preset);
+  StereoEkfOptions filter;
+  MeasurementOptions measurement;
+  if (preset == "paper") {
+    ApplyPaperPreset(&filter);
+    paper_measurement(&measurement);
+  } else if (preset != "default") {
+    reader.Fail("preset", "must be \"default\" or \"paper\"");
+  }
+  JsonReader filter_reader = reader.Child("filter");
+  ReadStereoEkfOptions(filter_reader, &filter);
+  filter_reader.RejectUnknownKeys();
+  JsonReader measurement_reader = reader.Child("measurement");
+  read_measurement(measurement_reader, &measurement);
+  measurement_reader.RejectUnknownKeys();
+  reader.RejectUnknownKeys();
+  return std::make_unique<StereoEkfTracker>(filter, make_model(measurement), to_json(measurement));
+}
+
 }  // namespace slt

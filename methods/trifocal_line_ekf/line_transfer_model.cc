@@ -26,6 +26,9 @@ void LineTransferOptions::Check(const std::string& where, const std::string& pat
   if (!(covariance_floor_rad > 0.0)) fail("covariance_floor_rad", "must be > 0");
   if (!(fixed_sigma_px > 0.0)) fail("fixed_sigma_px", "must be > 0");
   if (!(fixed_sigma_rad > 0.0)) fail("fixed_sigma_rad", "must be > 0");
+  if (!(min_epipolar_angle_deg >= 0.0 && min_epipolar_angle_deg < 90.0)) {
+    fail("min_epipolar_angle_deg", "must be in [0, 90)");
+  }
   if (!(min_plane_angle_deg >= 0.0 && min_plane_angle_deg < 90.0)) fail("min_plane_angle_deg", "must be in [0, 90)");
   if (!(min_segment_length_px >= 0.0)) fail("min_segment_length_px", "must be >= 0");
 }
@@ -39,6 +42,7 @@ void ReadLineTransferOptions(JsonReader& r, LineTransferOptions* o) {
       .Get("covariance_floor_rad", &o->covariance_floor_rad)
       .Get("fixed_sigma_px", &o->fixed_sigma_px)
       .Get("fixed_sigma_rad", &o->fixed_sigma_rad)
+      .Get("min_epipolar_angle_deg", &o->min_epipolar_angle_deg)
       .Get("min_plane_angle_deg", &o->min_plane_angle_deg)
       .Get("min_segment_length_px", &o->min_segment_length_px);
   o->Check(r.where(), r.path());
@@ -53,6 +57,7 @@ nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& o) {
           {"covariance_floor_rad", o.covariance_floor_rad},
           {"fixed_sigma_px", o.fixed_sigma_px},
           {"fixed_sigma_rad", o.fixed_sigma_rad},
+          {"min_epipolar_angle_deg", o.min_epipolar_angle_deg},
           {"min_plane_angle_deg", o.min_plane_angle_deg},
           {"min_segment_length_px", o.min_segment_length_px}};
 }
@@ -62,6 +67,7 @@ LineTransferModel::LineTransferModel(const LineTransferOptions& options) : optio
   paper_direction_ = options_.direction == "current_to_reference";
   distance_residual_ = options_.residual == "endpoint_distance";
   propagated_noise_ = options_.noise == "propagated";
+  min_epipolar_sine_ = std::sin(options_.min_epipolar_angle_deg * M_PI / 180.0);
   min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
   // Residual units per scalar: [px, px, px, px] or [rad, px, rad, px].
   Eigen::Vector4d fixed_sigma, floor;
@@ -90,6 +96,7 @@ const Rigid3d& LineTransferModel::RightFromRef(const Rigid3d& cam_from_ref) cons
 void LineTransferModel::Reset(const StereoRig& rig) {
   rig_ = rig;
   right_adjoint_ = Adjoint(rig.right_from_left);
+  left_epipole_ = rig.right_from_left.Center();
   cached_cam_from_ref_ = Rigid3d();
   cached_right_from_ref_ = rig.right_from_left;
   left_pixel_from_normalized_ = PixelFromNormalizedLineMatrix(rig.left);
@@ -130,6 +137,21 @@ const std::vector<LineObservation>& LineTransferModel::SortedById(const std::vec
   return *scratch;
 }
 
+int LineTransferModel::CountUsable(const std::vector<StereoLine>& lines) {
+  return static_cast<int>(std::count_if(lines.begin(), lines.end(), [](const StereoLine& l) { return !l.degenerate; }));
+}
+
+bool LineTransferModel::NearEpipolar(const ObservedSegment& left) const {
+  // The epipolar line through the segment's middle (normalised coordinates) joins it to the
+  // epipole; compare the two lines' normals.
+  const Eigen::Vector2d middle = rig_.left.PixelToNormalized(0.5 * (left.segment.head<2>() + left.segment.tail<2>()));
+  const Eigen::Vector3d epipolar = Homogeneous(middle).cross(left_epipole_);
+  const Eigen::Vector2d a = left.line.head<2>(), b = epipolar.head<2>();
+  const double denominator = a.norm() * b.norm();
+  if (!(denominator > 0.0)) return true;
+  return std::abs(a.x() * b.y() - a.y() * b.x()) / denominator < min_epipolar_sine_;
+}
+
 void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out) {
   const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
   const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
@@ -145,6 +167,7 @@ void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector
       StereoLine line;
       line.id = l->id;
       if (MakeSegment(l->segment, rig_.left, &line.left) && MakeSegment(r->segment, rig_.right, &line.right)) {
+        line.degenerate = NearEpipolar(line.left);
         out->push_back(line);
       }
       ++l;
@@ -160,17 +183,17 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     const StereoLine& ref = reference_[i];
     ReferenceLine& out = reference_lines_[i];
     Matrix63d d_left, d_right;
-    out.line = StereoPairLine(rig_.right_from_left, ref.left.line, ref.right.line, &d_left, &d_right, &out.plane_sine);
+    out.line = StereoPairLine(rig_.right_from_left, ref.left.line, ref.right.line, &d_left, &d_right);
     out.line_d_left_segment = d_left * ref.left.line_d_segment;
     out.line_d_right_segment = d_right * ref.right.line_d_segment;
   }
   matches_.clear();
-  return static_cast<int>(reference_.size());
+  return CountUsable(reference_);
 }
 
 int LineTransferModel::SetCurrent(const StereoFrame& frame) {
   CollectStereoLines(frame, &current_);
-  current_stereo_ = static_cast<int>(current_.size());
+  current_stereo_ = CountUsable(current_);
   matches_.clear();
   size_t i = 0, j = 0;
   while (i < reference_.size() && j < current_.size()) {
@@ -185,6 +208,22 @@ int LineTransferModel::SetCurrent(const StereoFrame& frame) {
     }
   }
   return static_cast<int>(matches_.size());
+}
+
+Eigen::Matrix4d LineTransferModel::NoiseCovariance(const Eigen::Matrix<double, 4, 16>& n, int bottom_zero_block) {
+  // N N^T by 2x4 blocks, skipping the two that are zero by construction: the first residual pair
+  // never sees the current right segment (columns 12-15), the second never sees one segment of
+  // the first pair (columns `bottom_zero_block`..+3). Half the products of the dense 4x16 N N^T.
+  Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
+  for (int b = 0; b < 16; b += 4) {
+    const auto top = n.block<2, 4>(0, b);
+    const auto bottom = n.block<2, 4>(2, b);
+    if (b != 12) c.topLeftCorner<2, 2>().noalias() += top.lazyProduct(top.transpose());
+    if (b != bottom_zero_block) c.bottomRightCorner<2, 2>().noalias() += bottom.lazyProduct(bottom.transpose());
+    if (b != 12 && b != bottom_zero_block) c.topRightCorner<2, 2>().noalias() += top.lazyProduct(bottom.transpose());
+  }
+  c.bottomLeftCorner<2, 2>() = c.topRightCorner<2, 2>().transpose();
+  return c;
 }
 
 Eigen::Vector2d LineTransferModel::Residual(const Eigen::Vector3d& line, const ObservedSegment& measured,
@@ -225,6 +264,9 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
   const Match& match = matches_[index];
   const StereoLine& ref = reference_[match.reference];
   const StereoLine& cur = current_[match.current];
+  // The reference pair defines the line in both directions; the paper's also transfers from
+  // the current pair.
+  if (ref.degenerate || (paper_direction_ && cur.degenerate)) return false;
   // Noise Jacobian columns: endpoints of [ref left | ref right | cur left | cur right].
   Eigen::Matrix<double, 4, 16> noise_jacobian;
   Eigen::Matrix<double, 2, 3> d1, d2;
@@ -257,7 +299,6 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
     // The reference pair's 3-D line (cached) imaged in the current pair: the trifocal transfer
     // with the current camera as the tensor's first view (geometry/plucker.h).
     const ReferenceLine& line = reference_lines_[match.reference];
-    if (line.plane_sine < min_plane_sine_) return false;
     const Rigid3d& right_from_ref = RightFromRef(cam_from_ref);
     const PlueckerLine in_left = TransformPluecker(cam_from_ref, line.line);
     const PlueckerLine in_right = TransformPluecker(right_from_ref, line.line);
@@ -285,7 +326,7 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
   if (with_covariance) {
     if (propagate) {
       const double var = options_.endpoint_sigma_px * options_.endpoint_sigma_px;
-      block->covariance.noalias() = var * noise_jacobian.lazyProduct(noise_jacobian.transpose());
+      block->covariance = var * NoiseCovariance(noise_jacobian, paper_direction_ ? 4 : 8);
       block->covariance.diagonal() += covariance_floor_;
     } else {
       block->covariance = fixed_covariance_;

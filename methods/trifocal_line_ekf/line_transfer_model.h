@@ -47,9 +47,17 @@ struct LineTransferOptions {
   // Fixed R: per residual scalar.
   double fixed_sigma_px = 2.0;
   double fixed_sigma_rad = 0.005;
-  // Features whose transfer intersects two planes closer than this are not measured (lines in
-  // the epipolar plane of the views a transfer uses: horizontal lines in a horizontal rig).
-  double min_plane_angle_deg = 3.0;
+  // Lines closer than this to the epipolar direction in the left image (at the segment's middle)
+  // are not measured: a stereo pair does not define a line in an epipolar plane (horizontal
+  // lines in a horizontal rig), and near it the transfer is too non-linear for the linearised
+  // covariance. Checked on the reference pair, and on the current pair for the paper's
+  // direction, whose transfers start from it. An image criterion, unlike the angle between the
+  // back-projected planes, does not also reject distant lines.
+  double min_epipolar_angle_deg = 3.0;
+  // Direction "current_to_reference" only: features whose transfer intersects two planes at
+  // less than this angle are not measured either (lines near the trifocal plane of the views a
+  // transfer uses, Sec. 4; this also rejects distant lines). 0 = off; the paper preset uses 3.
+  double min_plane_angle_deg = 0.0;
   // Segments shorter than this (px) are ignored.
   double min_segment_length_px = 5.0;
 
@@ -86,6 +94,7 @@ class LineTransferModel final : public FeatureModel {
   struct StereoLine {
     std::int64_t id;
     ObservedSegment left, right;
+    bool degenerate;  // within min_epipolar_angle_deg of the epipolar direction
   };
   // Per reference line, for direction "reference_to_current": the 3-D line of the pair
   // (l_1, l'_1) in the reference frame, computed once per reference, with the Jacobians of
@@ -94,7 +103,6 @@ class LineTransferModel final : public FeatureModel {
     PlueckerLine line;
     Eigen::Matrix<double, 6, 4> line_d_left_segment;
     Eigen::Matrix<double, 6, 4> line_d_right_segment;
-    double plane_sine;
   };
   struct Match {
     std::int64_t id;
@@ -108,6 +116,12 @@ class LineTransferModel final : public FeatureModel {
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;
+  static int CountUsable(const std::vector<StereoLine>& lines);
+  // True if the left segment lies within min_epipolar_angle_deg of its epipolar line.
+  bool NearEpipolar(const ObservedSegment& left) const;
+  // N N^T for the 4x16 noise Jacobian, whose blocks (0..1, 12..15) and (2..3, bottom_zero_block..+3)
+  // are zero.
+  static Eigen::Matrix4d NoiseCovariance(const Eigen::Matrix<double, 4, 16>& n, int bottom_zero_block);
   // Two residual scalars of predicted normalised line `line` (in a view with intrinsics of
   // `pixel_from_normalized` = K^-T and fx) against `measured`, with their Jacobians with respect
   // to the predicted line and to the measured segment's endpoints.
@@ -122,7 +136,9 @@ class LineTransferModel final : public FeatureModel {
   bool paper_direction_ = true;
   bool distance_residual_ = true;
   bool propagated_noise_ = true;
+  double min_epipolar_sine_ = 0.0;
   double min_plane_sine_ = 0.0;
+  Eigen::Vector3d left_epipole_;  // the right camera's centre in the left camera (normalised, homogeneous)
   StereoRig rig_;
   Eigen::Matrix3d left_pixel_from_normalized_;
   Eigen::Matrix3d right_pixel_from_normalized_;

@@ -45,7 +45,7 @@ LineTransferOptions Options(const std::string& direction, const std::string& res
   LineTransferOptions o;
   o.direction = direction;
   o.residual = residual;
-  o.min_plane_angle_deg = 0.0;
+  o.min_epipolar_angle_deg = 0.0;
   return o;
 }
 
@@ -141,7 +141,7 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   TinyScene scene;
   scene.lines = {{{-0.1, 0.02, 0.5}, {0.1, 0.02, 0.5}}};  // horizontal: in the rig's epipolar plane
   LineTransferOptions o = Options("current_to_reference", "endpoint_distance");
-  o.min_plane_angle_deg = 1.0;
+  o.min_epipolar_angle_deg = 1.0;
   LineTransferModel model(o);
   model.Reset(scene.rig);
   model.SetReference(scene.Frame(Rigid3d()));

@@ -7,34 +7,19 @@ namespace slt {
 namespace {
 
 std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::string& where) {
-  JsonReader reader(json, where);
-  std::string preset = "default";
-  reader.Get("preset", &preset);
-  StereoEkfOptions filter;
-  LineTransferOptions measurement;
-  if (preset == "paper") {
-    filter.state = "velocity";
-    filter.max_iterations = 1;
-    filter.robust = false;
-    filter.adaptive_noise = false;
-    filter.min_feature_fraction = 0.0;
-    // Sec. 3.3 counts the lines that survive the gate (eq. 20) as the available ones.
-    filter.count_features = "gated";
-    measurement.residual = "theta_lambda";
-    measurement.noise = "fixed";
-    measurement.direction = "current_to_reference";
-  } else if (preset != "default") {
-    reader.Fail("preset", "must be \"default\" or \"paper\"");
-  }
-  JsonReader filter_reader = reader.Child("filter");
-  ReadStereoEkfOptions(filter_reader, &filter);
-  filter_reader.RejectUnknownKeys();
-  JsonReader measurement_reader = reader.Child("measurement");
-  ReadLineTransferOptions(measurement_reader, &measurement);
-  measurement_reader.RejectUnknownKeys();
-  reader.RejectUnknownKeys();
-  return std::make_unique<StereoEkfTracker>(filter, std::make_unique<LineTransferModel>(measurement),
-                                            LineTransferOptionsToJson(measurement));
+  return CreateStereoEkfTracker<LineTransferOptions>(
+      json, where,
+      [](LineTransferOptions* m) {
+        // The paper's measurement: current lines transferred into the reference view (eq. 16),
+        // compared in (theta, lambda) (eq. 8-9) with a fixed R; lines near the trifocal plane
+        // excluded (Sec. 4).
+        m->residual = "theta_lambda";
+        m->noise = "fixed";
+        m->direction = "current_to_reference";
+        m->min_plane_angle_deg = 3.0;
+      },
+      ReadLineTransferOptions, LineTransferOptionsToJson,
+      [](const LineTransferOptions& m) { return std::make_unique<LineTransferModel>(m); });
 }
 
 }  // namespace

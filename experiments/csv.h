@@ -1,0 +1,33 @@
+// Minimal CSV (RFC 4180): fields containing a comma, a quote or a line break are quoted, with
+// quotes doubled. Numbers are written in the shortest form that reads back to the same double.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace slt {
+
+std::string CsvField(const std::string& field);
+std::string CsvLine(const std::vector<std::string>& fields);  // with the trailing '\n'
+// Shortest round-trip form; "nan", "inf", "-inf" for non-finite values.
+std::string FormatDouble(double value);
+// Parses FormatDouble's output (and any decimal number); throws std::invalid_argument.
+double ParseDouble(const std::string& text);
+
+struct CsvTable {
+  std::string where;  // file name, for errors
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;  // every row has header.size() fields
+
+  // Index of the column; throws std::runtime_error naming the file when it is missing.
+  size_t Column(const std::string& name) const;
+  bool HasColumn(const std::string& name) const;
+};
+
+// Throws std::runtime_error "<where>:<line>: <reason>" on malformed input (unterminated quote,
+// a row with the wrong number of fields).
+CsvTable ParseCsv(const std::string& text, const std::string& where);
+CsvTable ReadCsvFile(const std::string& path);
+std::string ReadTextFile(const std::string& path);
+
+}  // namespace slt

@@ -1,0 +1,409 @@
+#include "experiments/experiment_config.h"
+
+#include <charconv>
+#include <set>
+
+#include "common/json_reader.h"
+#include "common/random.h"
+#include "experiments/trial_result.h"
+#include "methods/pose_tracker.h"
+
+namespace slt {
+namespace {
+
+const std::set<std::string> kPlotKinds = {"sweep", "grid", "curves", "trajectory"};
+
+std::string Indexed(const std::string& key, size_t i) { return key + "[" + std::to_string(i) + "]"; }
+
+bool IsScalar(const nlohmann::json& v) { return v.is_number() || v.is_string() || v.is_boolean(); }
+
+MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const std::string& key) {
+  MethodSpec method;
+  if (j.is_string()) {
+    method.name = j.get<std::string>();
+  } else if (j.is_object()) {
+    JsonReader reader(j, where, key);
+    reader.Get("name", &method.name);
+    reader.Get("label", &method.label);
+    if (const nlohmann::json* options = reader.Find("options")) {
+      if (!options->is_object()) reader.Fail("options", std::string("expected an object, got ") + options->type_name());
+      method.options = *options;
+    }
+    reader.RejectUnknownKeys();
+    if (method.name.empty()) reader.Fail("name", "missing: the registered tracker name");
+  } else {
+    ThrowOptionError(where, "", key, std::string("expected a tracker name or {\"name\": ..}, got ") + j.type_name());
+  }
+  try {
+    FindTracker(method.name);
+  } catch (const std::invalid_argument& e) {
+    ThrowOptionError(where, "", key, e.what());
+  }
+  if (method.label.empty()) method.label = method.name;
+  // Invalid tracker options fail here, naming the key, rather than in the middle of a run.
+  try {
+    CreateTracker(method.name, method.options, where);
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    const std::string prefix = where + ": key '";
+    const std::string options_key = j.is_object() ? key + ".options" : key;
+    if (message.compare(0, prefix.size(), prefix) == 0) {
+      throw ConfigError(prefix + options_key + "." + message.substr(prefix.size()));
+    }
+    throw ConfigError(where + ": key '" + options_key + "': " + message);
+  }
+  return method;
+}
+
+std::vector<MethodSpec> AllMethods() {
+  std::vector<MethodSpec> methods;
+  for (const TrackerInfo& info : RegisteredTrackers()) {
+    if (info.plumbing_only) continue;
+    MethodSpec m;
+    m.name = info.name;
+    m.label = info.name;
+    methods.push_back(m);
+  }
+  return methods;
+}
+
+std::vector<MethodSpec> ReadMethodList(JsonReader& reader, const std::string& key, bool allow_all) {
+  const nlohmann::json* v = reader.Find(key);
+  if (v == nullptr) return allow_all ? AllMethods() : std::vector<MethodSpec>{};
+  if (allow_all && v->is_string() && v->get<std::string>() == "all") return AllMethods();
+  if (!v->is_array()) reader.Fail(key, std::string(allow_all ? "expected \"all\" or " : "expected ") + "an array of methods");
+  std::vector<MethodSpec> methods;
+  for (size_t i = 0; i < v->size(); ++i) methods.push_back(ReadMethod((*v)[i], reader.where(), Indexed(reader.KeyPath(key), i)));
+  return methods;
+}
+
+SweepAxis ReadAxis(const nlohmann::json& j, const std::string& where, const std::string& key) {
+  JsonReader reader(j, where, key);
+  SweepAxis axis;
+  reader.Get("parameter", &axis.parameter);
+  reader.Get("label", &axis.label);
+  const nlohmann::json* values = reader.Find("values");
+  reader.RejectUnknownKeys();
+  if (axis.parameter.empty()) reader.Fail("parameter", "missing: a dotted key of the simulation config");
+  if (axis.parameter == "seed") reader.Fail("parameter", "'seed' cannot be swept (trials set it; use the top-level 'seed' or 'trials')");
+  if (values == nullptr || !values->is_array() || values->empty()) reader.Fail("values", "expected a non-empty array");
+  for (size_t i = 0; i < values->size(); ++i) {
+    if (!IsScalar((*values)[i])) reader.Fail(Indexed("values", i), "expected a number, string or boolean");
+    for (size_t k = 0; k < i; ++k) {
+      if ((*values)[k] == (*values)[i]) reader.Fail(Indexed("values", i), "duplicate value " + (*values)[i].dump());
+    }
+    axis.values.push_back((*values)[i]);
+  }
+  if (axis.label.empty()) axis.label = axis.parameter;
+  return axis;
+}
+
+PlotSpec ReadPlot(const nlohmann::json& j, const std::string& where, const std::string& key) {
+  JsonReader reader(j, where, key);
+  PlotSpec plot;
+  reader.Get("kind", &plot.kind).Get("file", &plot.file).Get("title", &plot.title).Get("yscale", &plot.yscale);
+  reader.Get("band", &plot.band).Get("lines", &plot.lines).Get("trial", &plot.trial);
+  reader.RejectUnknownKeys();
+  if (!kPlotKinds.count(plot.kind)) reader.Fail("kind", "must be \"sweep\", \"grid\", \"curves\" or \"trajectory\"");
+  if (plot.file.size() < 5 || plot.file.substr(plot.file.size() - 4) != ".png" ||
+      plot.file.find('/') != std::string::npos) {
+    reader.Fail("file", "expected a file name ending in .png (no directory)");
+  }
+  if (plot.yscale != "linear" && plot.yscale != "log") reader.Fail("yscale", "must be \"linear\" or \"log\"");
+  if (plot.lines != "methods" && plot.lines != "sweep") reader.Fail("lines", "must be \"methods\" or \"sweep\"");
+  if (plot.trial < 0) reader.Fail("trial", "must be >= 0");
+  return plot;
+}
+
+std::vector<PlotSpec> DefaultPlots(const ExperimentConfig& c) {
+  std::vector<PlotSpec> plots;
+  PlotSpec p;
+  if (c.sweep.size() == 1) {
+    p.kind = "sweep";
+    p.file = c.name + ".png";
+    plots.push_back(p);
+  } else if (c.sweep.size() == 2) {
+    p.kind = "grid";
+    p.file = c.name + ".png";
+    plots.push_back(p);
+  }
+  if (c.per_frame_curves) {
+    p = PlotSpec();
+    p.kind = "curves";
+    p.file = c.name + "_curves.png";
+    plots.push_back(p);
+  }
+  if (c.save_trajectories > 0) {
+    p = PlotSpec();
+    p.kind = "trajectory";
+    p.file = c.name + "_trajectory.png";
+    plots.push_back(p);
+  }
+  return plots;
+}
+
+void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::string& where, const std::string& key) {
+  auto fail = [&](const std::string& reason) { ThrowOptionError(where, key, "kind", reason); };
+  if (plot.kind == "sweep" && c.sweep.size() != 1) fail("\"sweep\" plots need exactly one swept parameter");
+  if (plot.kind == "grid" && c.sweep.size() != 2) fail("\"grid\" plots need two swept parameters");
+  if (plot.kind == "curves" && !c.per_frame_curves) fail("\"curves\" plots need \"per_frame_curves\": true");
+  if (plot.kind == "trajectory" && plot.trial >= c.save_trajectories) {
+    ThrowOptionError(where, key, "trial", "trial " + std::to_string(plot.trial) +
+                                              " is not saved (\"save_trajectories\" is " +
+                                              std::to_string(c.save_trajectories) + ")");
+  }
+}
+
+// Reads a simulation JSON; errors read "<where>: key 'simulation.<key>': <reason>" (with
+// " (at sweep point <at>)" appended when `at` is not empty).
+SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& where, const std::string& at) {
+  try {
+    SimulationConfig config = SimulationConfigFromJson(sim, where);
+    config.Check(where);
+    return config;
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    const std::string prefix = where + ": key '";
+    const std::string suffix = at.empty() ? "" : " (at sweep point " + at + ")";
+    if (message.compare(0, prefix.size(), prefix) == 0) {
+      throw ConfigError(prefix + "simulation." + message.substr(prefix.size()) + suffix);
+    }
+    throw ConfigError(where + ": key 'simulation': " + message + suffix);
+  }
+}
+
+nlohmann::json ToJson(const MethodSpec& m) {
+  return {{"name", m.name}, {"label", m.label}, {"options", m.options}};
+}
+
+nlohmann::json ToJson(const SweepAxis& a) {
+  return {{"parameter", a.parameter}, {"values", a.values}, {"label", a.label}};
+}
+
+nlohmann::json ToJson(const PlotSpec& p) {
+  return {{"kind", p.kind}, {"file", p.file},   {"title", p.title}, {"yscale", p.yscale},
+          {"band", p.band}, {"lines", p.lines}, {"trial", p.trial}};
+}
+
+}  // namespace
+
+ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::string& where) {
+  JsonReader reader(j, where);
+  ExperimentConfig c;
+  reader.Get("name", &c.name).Get("title", &c.title).Get("trials", &c.trials).Get("seed", &c.seed);
+  if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos || c.name[0] == '.') {
+    reader.Fail("name", "expected a non-empty name without '/', '\\' or spaces (it names the output directory)");
+  }
+  if (c.title.empty()) c.title = c.name;
+  if (c.trials < 1) reader.Fail("trials", "must be >= 1");
+
+  if (const nlohmann::json* sim = reader.Find("simulation")) {
+    if (!sim->is_object()) reader.Fail("simulation", std::string("expected an object, got ") + sim->type_name());
+    c.simulation = *sim;
+  }
+  if (c.simulation.contains("seed")) {
+    ThrowOptionError(where, "simulation", "seed", "set by the experiment (trial k uses TrialSeed(seed, k)); use the top-level 'seed'");
+  }
+  ParseSimulation(c.simulation, where, "");
+
+  if (const nlohmann::json* sweep = reader.Find("sweep")) {
+    if (!sweep->is_array()) reader.Fail("sweep", "expected an array of {\"parameter\", \"values\"}");
+    if (sweep->size() > 2) reader.Fail("sweep", "at most 2 swept parameters");
+    for (size_t i = 0; i < sweep->size(); ++i) c.sweep.push_back(ReadAxis((*sweep)[i], where, Indexed("sweep", i)));
+    if (c.sweep.size() == 2 && c.sweep[0].parameter == c.sweep[1].parameter) {
+      reader.Fail("sweep[1].parameter", "the same parameter as sweep[0]");
+    }
+  }
+
+  c.methods = ReadMethodList(reader, "methods", true);
+  for (MethodSpec& m : ReadMethodList(reader, "extra_methods", false)) c.methods.push_back(m);
+  if (c.methods.empty()) reader.Fail("methods", "no method to run");
+  for (size_t i = 0; i < c.methods.size(); ++i) {
+    for (size_t k = 0; k < i; ++k) {
+      if (c.methods[k].label == c.methods[i].label) {
+        reader.Fail("methods", "two methods have the id '" + c.methods[i].label +
+                                   "' (give the second a distinct \"label\")");
+      }
+    }
+  }
+
+  if (const nlohmann::json* mf = reader.Find("metrics_frame")) {
+    if (mf->is_string() && mf->get<std::string>() == "last") {
+      c.metrics_frame = -1;
+    } else if (mf->is_number_integer() && mf->get<long long>() >= 0 && mf->get<long long>() < (1LL << 30)) {
+      c.metrics_frame = mf->get<int>();
+    } else {
+      reader.Fail("metrics_frame", "expected a frame index >= 0 or \"last\"");
+    }
+  }
+  reader.Get("per_frame_curves", &c.per_frame_curves).Get("save_trajectories", &c.save_trajectories);
+  if (c.save_trajectories < 0) reader.Fail("save_trajectories", "must be >= 0");
+  c.save_trajectories = std::min(c.save_trajectories, c.trials);
+  reader.Get("table_metrics", &c.table_metrics);
+  for (size_t i = 0; i < c.table_metrics.size(); ++i) {
+    if (c.table_metrics[i] == "time_us") c.table_metrics[i] = TrialMetricName(kTimeMeanUs);
+    if (TrialMetricFromName(c.table_metrics[i]) < 0) {
+      std::string known;
+      for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
+      reader.Fail(Indexed("table_metrics", i), "unknown metric '" + c.table_metrics[i] + "' (known:" + known + ")");
+    }
+  }
+
+  if (const nlohmann::json* plots = reader.Find("plots")) {
+    if (!plots->is_array()) reader.Fail("plots", "expected an array of plot objects");
+    for (size_t i = 0; i < plots->size(); ++i) c.plots.push_back(ReadPlot((*plots)[i], where, Indexed("plots", i)));
+  } else {
+    c.plots = DefaultPlots(c);
+  }
+  for (size_t i = 0; i < c.plots.size(); ++i) {
+    CheckPlot(c, c.plots[i], where, Indexed("plots", i));
+    if (c.plots[i].title.empty()) c.plots[i].title = c.title;
+    for (size_t k = 0; k < i; ++k) {
+      if (c.plots[k].file == c.plots[i].file) ThrowOptionError(where, Indexed("plots", i), "file", "used twice");
+    }
+  }
+  reader.Get("expect_best", &c.expect_best);
+  if (!c.expect_best.empty()) {
+    bool found = false;
+    for (const MethodSpec& m : c.methods) found = found || m.Id() == c.expect_best;
+    if (!found) reader.Fail("expect_best", "'" + c.expect_best + "' is not the id of a method of this config");
+  }
+  reader.Find("resolved");  // output only (ResolvedConfigJson): ignored on input
+  reader.RejectUnknownKeys();
+
+  // Every sweep point must give a valid simulation, and the metrics frame must exist in it.
+  const std::vector<SweepPoint> points = ExpandSweep(c.sweep);
+  for (const SweepPoint& point : points) {
+    nlohmann::json sim = c.simulation;
+    for (size_t a = 0; a < c.sweep.size(); ++a) {
+      try {
+        SetDottedKey(&sim, c.sweep[a].parameter, point.values[a]);
+      } catch (const std::invalid_argument& e) {
+        ThrowOptionError(where, Indexed("sweep", a), "parameter", e.what());
+      }
+    }
+    std::string at;
+    for (size_t a = 0; a < c.sweep.size(); ++a) at += (a ? ", " : "") + c.sweep[a].parameter + " = " + FormatValue(point.values[a]);
+    const SimulationConfig config = ParseSimulation(sim, where, at);
+    if (c.metrics_frame >= config.frames) {
+      reader.Fail("metrics_frame", "frame " + std::to_string(c.metrics_frame) + " does not exist in a sequence of " +
+                                       std::to_string(config.frames) + " frames (frames count from 0)");
+    }
+  }
+  return c;
+}
+
+ExperimentConfig ReadExperimentConfig(const std::string& path) {
+  return ExperimentConfigFromJson(ReadJsonFile(path), path);
+}
+
+nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
+  nlohmann::json j;
+  j["name"] = c.name;
+  j["title"] = c.title;
+  j["trials"] = c.trials;
+  j["seed"] = c.seed;
+  j["simulation"] = c.simulation;
+  j["sweep"] = nlohmann::json::array();
+  for (const SweepAxis& a : c.sweep) j["sweep"].push_back(ToJson(a));
+  j["methods"] = nlohmann::json::array();
+  for (const MethodSpec& m : c.methods) j["methods"].push_back(ToJson(m));
+  if (c.metrics_frame < 0) {
+    j["metrics_frame"] = "last";
+  } else {
+    j["metrics_frame"] = c.metrics_frame;
+  }
+  j["per_frame_curves"] = c.per_frame_curves;
+  j["save_trajectories"] = c.save_trajectories;
+  j["table_metrics"] = c.table_metrics;
+  j["plots"] = nlohmann::json::array();
+  for (const PlotSpec& p : c.plots) j["plots"].push_back(ToJson(p));
+  j["expect_best"] = c.expect_best;
+  return j;
+}
+
+nlohmann::json ResolvedConfigJson(const ExperimentConfig& c) {
+  nlohmann::json j = ExperimentConfigToJson(c);
+  nlohmann::json resolved;
+  resolved["note"] = "output only: ignored when this file is read back as a config";
+  resolved["methods"] = nlohmann::json::array();
+  for (const MethodSpec& m : c.methods) {
+    const TrackerInfo& info = FindTracker(m.name);
+    resolved["methods"].push_back({{"id", m.Id()},
+                                   {"name", m.name},
+                                   {"description", info.description},
+                                   {"minimum_lines", info.minimum_lines},
+                                   {"options", CreateTracker(m.name, m.options, "methods")->Options()}});
+  }
+  resolved["points"] = nlohmann::json::array();
+  const std::vector<SweepPoint> points = ExpandSweep(c.sweep);
+  for (size_t p = 0; p < points.size(); ++p) {
+    nlohmann::json values = nlohmann::json::object();
+    for (size_t a = 0; a < c.sweep.size(); ++a) values[c.sweep[a].parameter] = points[p].values[a];
+    nlohmann::json sim = SimulationConfigToJson(TrialSimulation(c, points[p], 0));
+    sim["seed"] = "TrialSeed(seed, trial)";
+    resolved["points"].push_back({{"point", p}, {"values", values}, {"simulation", sim}});
+  }
+  j["resolved"] = resolved;
+  return j;
+}
+
+std::vector<SweepPoint> ExpandSweep(const std::vector<SweepAxis>& axes) {
+  std::vector<SweepPoint> points(1);
+  for (const SweepAxis& axis : axes) {
+    std::vector<SweepPoint> next;
+    for (const SweepPoint& p : points) {
+      for (const nlohmann::json& v : axis.values) {
+        SweepPoint q = p;
+        q.values.push_back(v);
+        next.push_back(q);
+      }
+    }
+    points = next;
+  }
+  return points;
+}
+
+void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const nlohmann::json& value) {
+  nlohmann::json* node = object;
+  size_t start = 0;
+  while (true) {
+    const size_t dot = dotted_key.find('.', start);
+    const std::string part = dotted_key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) throw std::invalid_argument("malformed dotted key '" + dotted_key + "'");
+    if (!node->is_object()) {
+      throw std::invalid_argument("'" + dotted_key.substr(0, start ? start - 1 : 0) + "' is not an object");
+    }
+    if (dot == std::string::npos) {
+      (*node)[part] = value;
+      return;
+    }
+    if (!node->contains(part)) (*node)[part] = nlohmann::json::object();
+    node = &(*node)[part];
+    start = dot + 1;
+  }
+}
+
+SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoint& point, int trial) {
+  nlohmann::json sim = config.simulation;
+  for (size_t a = 0; a < config.sweep.size(); ++a) SetDottedKey(&sim, config.sweep[a].parameter, point.values[a]);
+  SimulationConfig s = SimulationConfigFromJson(sim, config.name + ": simulation");
+  s.seed = TrialSeed(config.seed, static_cast<std::uint64_t>(trial));
+  return s;
+}
+
+int MetricsFrameFor(const ExperimentConfig& config, int frames) {
+  return config.metrics_frame < 0 ? frames - 1 : config.metrics_frame;
+}
+
+std::string FormatValue(const nlohmann::json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_number_float()) {
+    char buffer[64];
+    const auto r = std::to_chars(buffer, buffer + sizeof(buffer), value.get<double>());
+    return std::string(buffer, r.ptr);
+  }
+  return value.dump();
+}
+
+}  // namespace slt

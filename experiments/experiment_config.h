@@ -1,0 +1,108 @@
+// The experiment config: which simulated sequences, which trackers, how many trials, which
+// sweep, which plots. docs/experiments.md lists every field.
+//
+// Every field has a default. Errors are ConfigError "<file>: key '<dotted.key>': <reason>".
+// ExperimentConfigToJson writes every field with its default filled in, in a form that
+// ExperimentConfigFromJson reads back to the same config (config.resolved.json).
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "simulator/simulation_config.h"
+
+namespace slt {
+
+// One swept parameter: a dotted key path into the simulation JSON and its values (JSON
+// scalars: numbers, strings or booleans).
+struct SweepAxis {
+  std::string parameter;
+  std::vector<nlohmann::json> values;
+  std::string label;  // axis label for plots and tables; defaults to the parameter
+};
+
+// One tracker of the experiment. Its id in every output is its label (unique in a config).
+struct MethodSpec {
+  std::string name;                                     // registered tracker name
+  std::string label;                                    // defaults to name
+  nlohmann::json options = nlohmann::json::object();   // passed to CreateTracker
+  const std::string& Id() const { return label; }
+};
+
+// One PNG drawn by scripts/plot_experiment.py from the CSV outputs.
+struct PlotSpec {
+  std::string kind;            // "sweep", "grid", "curves" or "trajectory"
+  std::string file;            // file name in the output directory, "*.png"
+  std::string title;           // figure title (defaults to the experiment's title)
+  std::string yscale = "linear";  // "linear" or "log"
+  bool band = false;           // sweep, grid: shade the 95 % interval over trials
+  // grid: "methods" = one panel per value of the second parameter, one line per method;
+  // "sweep" = one panel per method, one line per value of the second parameter.
+  std::string lines = "methods";
+  int trial = 0;               // trajectory: the trial drawn (must be saved)
+};
+
+struct ExperimentConfig {
+  std::string name = "experiment";  // output directory name: results/<name>
+  std::string title;                // defaults to name
+  int trials = 20;
+  std::uint64_t seed = 1;  // trial k simulates with seed TrialSeed(seed, k)
+  // The base simulation JSON as given (SimulationConfigFromJson format, without "seed"). It is
+  // kept as JSON, not resolved, because some simulation defaults depend on other fields
+  // (scene.type) that a sweep may change.
+  nlohmann::json simulation = nlohmann::json::object();
+  std::vector<SweepAxis> sweep;  // 0, 1 or 2 axes; 2 = every combination (a grid)
+  std::vector<MethodSpec> methods;
+  // Frame at which the accumulated error is read; -1 = the last frame of each sequence.
+  int metrics_frame = -1;
+  bool per_frame_curves = false;  // write per-frame error curves (Fig. 6)
+  int save_trajectories = 0;      // trials 0 .. n-1 of each (method, point) write TUM files
+  // Summary columns of summary.md / summary.tex (names from SummaryMetricNames()).
+  std::vector<std::string> table_metrics = {"rot_err_deg", "trans_err_m", "time_us"};
+  std::vector<PlotSpec> plots;  // defaults follow the sweep and the curves/trajectory flags
+  // The method expected to have the lowest mean rotation and translation error at the metrics
+  // frame at every sweep point (the paper's ordering); checked by experiments_regression_test.
+  // Empty = no expectation.
+  std::string expect_best;
+};
+
+// Reads a config. `where` names the file in errors. "methods": "all" (or absent) expands to
+// every registered tracker that is not plumbing_only, with default options, in registration
+// order; "extra_methods" are appended.
+ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::string& where);
+ExperimentConfig ReadExperimentConfig(const std::string& path);
+// Every field, defaults filled in, methods expanded. Round-trips through
+// ExperimentConfigFromJson.
+nlohmann::json ExperimentConfigToJson(const ExperimentConfig& config);
+// ExperimentConfigToJson plus an output-only "resolved" section (ignored when read back):
+// each method's description and resolved Options(), and the full simulation config of every
+// sweep point. Creates each tracker once.
+nlohmann::json ResolvedConfigJson(const ExperimentConfig& config);
+
+// A point of the sweep: one value per axis (empty for no sweep).
+struct SweepPoint {
+  std::vector<nlohmann::json> values;
+};
+// Every combination of the axes' values, the first axis outermost. One empty point for no
+// sweep.
+std::vector<SweepPoint> ExpandSweep(const std::vector<SweepAxis>& axes);
+
+// Sets `value` at the dotted key path in `object`, creating intermediate objects.
+void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const nlohmann::json& value);
+
+// The simulation config of a sweep point for trial `trial`: the base JSON with the point's
+// values set, read by SimulationConfigFromJson, seed = TrialSeed(config.seed, trial). The seed
+// does not depend on the point or the method: every sweep value and every method of trial k
+// sees the same scene, motion and noise draws.
+SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoint& point, int trial);
+
+// The frame at which errors are read for a sequence of `frames` frames.
+int MetricsFrameFor(const ExperimentConfig& config, int frames);
+
+// A value printed for CSV columns, file names and tables: numbers in the shortest form that
+// reads back to the same double, strings as they are.
+std::string FormatValue(const nlohmann::json& value);
+
+}  // namespace slt

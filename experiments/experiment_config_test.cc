@@ -1,0 +1,183 @@
+#include "experiments/experiment_config.h"
+
+#include <gtest/gtest.h>
+
+#include "common/json_reader.h"
+#include "common/random.h"
+#include "methods/pose_tracker.h"
+
+namespace slt {
+namespace {
+
+using nlohmann::json;
+
+// The message of the ConfigError thrown when reading `j` (empty when it reads fine).
+std::string ErrorOf(const json& j) {
+  try {
+    ExperimentConfigFromJson(j, "cfg.json");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ExperimentConfig, EmptyConfigHasTheDefaults) {
+  const ExperimentConfig c = ExperimentConfigFromJson(json::object(), "cfg.json");
+  EXPECT_EQ(c.trials, 20);
+  EXPECT_EQ(c.seed, 1u);
+  EXPECT_EQ(c.metrics_frame, -1);
+  EXPECT_TRUE(c.sweep.empty());
+  EXPECT_FALSE(c.per_frame_curves);
+  EXPECT_TRUE(c.plots.empty());
+  EXPECT_EQ(c.title, c.name);
+}
+
+TEST(ExperimentConfig, AllIsEveryRegisteredTrackerButThePlumbing) {
+  const ExperimentConfig c = ExperimentConfigFromJson({{"methods", "all"}}, "cfg.json");
+  std::vector<std::string> ids;
+  for (const MethodSpec& m : c.methods) ids.push_back(m.Id());
+  EXPECT_EQ(ids, RegisteredTrackerNames(false));
+  for (const MethodSpec& m : c.methods) EXPECT_FALSE(FindTracker(m.name).plumbing_only);
+  EXPECT_FALSE(ids.empty());
+}
+
+TEST(ExperimentConfig, ExtraMethodsAreAppendedWithLabelsAndOptions) {
+  const ExperimentConfig c = ExperimentConfigFromJson(
+      {{"extra_methods", {{{"name", "trifocal_line_ekf"}, {"label", "EKF, paper"}, {"options", {{"preset", "paper"}}}},
+                          "constant_pose"}}},
+      "cfg.json");
+  const size_t n = RegisteredTrackerNames(false).size();
+  ASSERT_EQ(c.methods.size(), n + 2);
+  EXPECT_EQ(c.methods[n].Id(), "EKF, paper");
+  EXPECT_EQ(c.methods[n].options, json({{"preset", "paper"}}));
+  EXPECT_EQ(c.methods[n + 1].Id(), "constant_pose");
+}
+
+TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
+  EXPECT_EQ(ErrorOf({{"trails", 3}}), "cfg.json: key 'trails': unknown key");
+  EXPECT_EQ(ErrorOf({{"trials", "many"}}).rfind("cfg.json: key 'trials': ", 0), 0u);
+  EXPECT_EQ(ErrorOf({{"trials", 0}}), "cfg.json: key 'trials': must be >= 1");
+  EXPECT_NE(ErrorOf({{"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", 1}}}}}).find("key 'sweep[0].values'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {1, 2}}, {"lable", "x"}}}}})
+                .find("key 'sweep[0].lable': unknown key"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"methods", {"trifocal_line_ekf", "no_such_tracker"}}}).find("cfg.json: key 'methods[1]': unknown method"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"methods", {{{"name", "trifocal_line_ekf"}, {"options", {{"preset", "fast"}}}}}}})
+                .find("cfg.json: key 'methods[0].options.preset'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"methods", {{{"label", "x"}}}}}).find("key 'methods[0].name'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"methods", {"trifocal_line_ekf", "trifocal_line_ekf"}}}).find("key 'methods': two methods have the id"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"metrics_frame", 100}}).find("cfg.json: key 'metrics_frame': frame 100 does not exist"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"metrics_frame", -2}}).find("key 'metrics_frame'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"plots", {{{"kind", "sweep"}, {"file", "a.png"}}}}}).find("key 'plots[0].kind'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"plots", {{{"kind", "pie"}, {"file", "a.png"}}}}}).find("key 'plots[0].kind'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"table_metrics", {"rot_err_deg", "speed"}}}).find("key 'table_metrics[1]': unknown metric 'speed'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_best", "nobody"}}).find("key 'expect_best'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"name", "a/b"}}).find("key 'name'"), std::string::npos);
+}
+
+TEST(ExperimentConfig, SimulationErrorsNameTheSimulationKey) {
+  EXPECT_NE(ErrorOf({{"simulation", {{"noise", {{"endpont_px", 1}}}}}}).find("cfg.json: key 'simulation.noise.endpont_px'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"simulation", {{"seed", 3}}}}).find("cfg.json: key 'simulation.seed'"), std::string::npos);
+  // A misspelt swept parameter is an unknown simulation key, reported with the sweep point.
+  const std::string e = ErrorOf({{"sweep", {{{"parameter", "noise.endpont_px"}, {"values", {1, 2}}}}}});
+  EXPECT_NE(e.find("cfg.json: key 'simulation.noise.endpont_px'"), std::string::npos) << e;
+  EXPECT_NE(e.find("sweep point noise.endpont_px = 1"), std::string::npos) << e;
+  // An invalid swept value.
+  EXPECT_NE(ErrorOf({{"sweep", {{{"parameter", "frames"}, {"values", {10, 0}}}}}}).find("key 'simulation.frames'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"sweep", {{{"parameter", "seed"}, {"values", {1, 2}}}}}}).find("key 'sweep[0].parameter'"),
+            std::string::npos);
+  // The metrics frame must exist at every sweep point.
+  EXPECT_NE(ErrorOf({{"metrics_frame", 50}, {"sweep", {{{"parameter", "frames"}, {"values", {100, 40}}}}}})
+                .find("key 'metrics_frame'"),
+            std::string::npos);
+}
+
+TEST(ExperimentConfig, ResolvedConfigReadsBackToTheSameConfig) {
+  const json input = {{"name", "t"},
+                      {"trials", 3},
+                      {"seed", 9},
+                      {"simulation", {{"frames", 30}, {"scene", {{"type", "room"}}}}},
+                      {"sweep",
+                       {{{"parameter", "noise.endpoint_px"}, {"values", {0, 1.5}}},
+                        {{"parameter", "outliers.rate"}, {"values", {0, 0.1}}, {"label", "Outliers"}}}},
+                      {"extra_methods", {{{"name", "trifocal_line_ekf"}, {"label", "paper"}, {"options", {{"preset", "paper"}}}}}},
+                      {"metrics_frame", 20},
+                      {"per_frame_curves", true},
+                      {"save_trajectories", 1}};
+  const ExperimentConfig c = ExperimentConfigFromJson(input, "cfg.json");
+  const json resolved = ResolvedConfigJson(c);
+  const ExperimentConfig back = ExperimentConfigFromJson(resolved, "config.resolved.json");
+  EXPECT_EQ(ExperimentConfigToJson(back), ExperimentConfigToJson(c));
+  // Defaults are filled in: the default plots, the tracker options, the per-point simulations.
+  EXPECT_EQ(resolved["plots"].size(), 3u);
+  ASSERT_EQ(resolved["resolved"]["methods"].size(), c.methods.size());
+  EXPECT_TRUE(resolved["resolved"]["methods"][0]["options"].is_object());
+  ASSERT_EQ(resolved["resolved"]["points"].size(), 4u);
+  EXPECT_EQ(resolved["resolved"]["points"][3]["simulation"]["noise"]["endpoint_px"], 1.5);
+  EXPECT_EQ(resolved["resolved"]["points"][3]["simulation"]["outliers"]["rate"], 0.1);
+  // The room's scene-dependent defaults survive: the base simulation is kept as given.
+  EXPECT_EQ(resolved["resolved"]["points"][0]["simulation"]["motion"]["type"], "loop");
+}
+
+TEST(Sweep, ExpandsEveryCombinationFirstAxisOutermost) {
+  SweepAxis a{"frames", {10, 20}, "frames"};
+  SweepAxis b{"noise.endpoint_px", {0.0, 1.0, 2.0}, "noise"};
+  const std::vector<SweepPoint> points = ExpandSweep({a, b});
+  ASSERT_EQ(points.size(), 6u);
+  EXPECT_EQ(points[0].values, (std::vector<json>{10, 0.0}));
+  EXPECT_EQ(points[2].values, (std::vector<json>{10, 2.0}));
+  EXPECT_EQ(points[3].values, (std::vector<json>{20, 0.0}));
+  EXPECT_EQ(ExpandSweep({}).size(), 1u);
+  EXPECT_TRUE(ExpandSweep({})[0].values.empty());
+}
+
+TEST(Sweep, SetDottedKeyCreatesObjectsAndKeepsSiblings) {
+  json j = {{"noise", {{"model", "gaussian"}}}};
+  SetDottedKey(&j, "noise.endpoint_px", 1.5);
+  SetDottedKey(&j, "scene.paper.lines", 12);
+  EXPECT_EQ(j["noise"]["model"], "gaussian");
+  EXPECT_EQ(j["noise"]["endpoint_px"], 1.5);
+  EXPECT_EQ(j["scene"]["paper"]["lines"], 12);
+  EXPECT_THROW(SetDottedKey(&j, "noise.model.x", 1), std::invalid_argument);
+  EXPECT_THROW(SetDottedKey(&j, "noise..x", 1), std::invalid_argument);
+}
+
+TEST(Sweep, TrialSeedIsTheSameForEverySweepValueAndDiffersAcrossTrials) {
+  const ExperimentConfig c = ExperimentConfigFromJson(
+      {{"seed", 5}, {"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {0, 1, 2.5}}}}}}, "cfg.json");
+  const std::vector<SweepPoint> points = ExpandSweep(c.sweep);
+  for (int trial = 0; trial < 3; ++trial) {
+    for (size_t p = 0; p < points.size(); ++p) {
+      const SimulationConfig s = TrialSimulation(c, points[p], trial);
+      EXPECT_EQ(s.seed, TrialSeed(5, trial));
+      EXPECT_DOUBLE_EQ(s.noise.endpoint_px, points[p].values[0].get<double>());
+    }
+  }
+  EXPECT_NE(TrialSimulation(c, points[0], 0).seed, TrialSimulation(c, points[0], 1).seed);
+}
+
+TEST(Sweep, MetricsFrameDefaultsToTheLastFrame) {
+  ExperimentConfig c;
+  EXPECT_EQ(MetricsFrameFor(c, 100), 99);
+  c.metrics_frame = 10;
+  EXPECT_EQ(MetricsFrameFor(c, 100), 10);
+}
+
+TEST(FormatValue, NumbersInShortestFormStringsAsIs) {
+  EXPECT_EQ(FormatValue(json(0.1)), "0.1");
+  EXPECT_EQ(FormatValue(json(2.0)), "2");
+  EXPECT_EQ(FormatValue(json(40)), "40");
+  EXPECT_EQ(FormatValue(json("room")), "room");
+  EXPECT_EQ(FormatValue(json(true)), "true");
+}
+
+}  // namespace
+}  // namespace slt

@@ -1,0 +1,42 @@
+// The whole run_experiment flow, as a library (the tests use it): run or merge, then write
+// every output and draw the plots.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "experiments/experiment_config.h"
+#include "experiments/experiment_output.h"
+#include "experiments/experiment_runner.h"
+
+namespace slt {
+
+struct DriverOptions {
+  std::string out_dir;
+  RunOptions run;
+  std::string config_file;                // recorded in run.json
+  std::vector<std::string> command_line;  // recorded in run.json
+};
+
+// Runs the experiment (or the shard), then writes raw/, config.resolved.json, and, for a whole
+// run, the summaries; run.json last. Does not plot.
+ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& options);
+
+// Combines shard directories (MergeShardOutputs) into options.out_dir: raw/, summaries,
+// config.resolved.json, run.json (with every shard's run.json). Returns the merged run.
+MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const DriverOptions& options);
+
+// The result directory of a config when --out is not given: <source tree>/results/<name> (or
+// ./results/<name> when the source tree is gone).
+std::string DefaultOutputDir(const std::string& name);
+
+// Finds a config: `name` as given (relative to the current directory), then in
+// ./experiments/configs/ and <source tree>/experiments/configs/, each with and without ".json".
+// Throws std::runtime_error listing where it looked.
+std::string FindConfigFile(const std::string& name);
+
+// Runs `<python> scripts/plot_experiment.py DIR` (python: $SLT_PYTHON, else /usr/bin/python3,
+// which has Debian's matplotlib). Throws std::runtime_error when the script fails.
+void RunPlotScript(const std::string& dir, bool quiet = false);
+
+}  // namespace slt

@@ -1,0 +1,525 @@
+#include "experiments/experiment_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "common/json_reader.h"
+#include "experiments/csv.h"
+#include "experiments/experiment_runner.h"
+
+namespace slt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct MetricInfo {
+  const char* name;
+  const char* title;
+};
+
+constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
+    {"rot_err_deg", "Rotation error (deg)"},
+    {"trans_err_m", "Translation error (m)"},
+    {"final_rot_err_deg", "Final rotation error (deg)"},
+    {"final_trans_err_m", "Final translation error (m)"},
+    {"ate_trans_m", "ATE translation RMSE (m)"},
+    {"ate_rot_deg", "ATE rotation RMSE (deg)"},
+    {"rpe_trans_m", "RPE translation RMSE (m)"},
+    {"rpe_rot_deg", "RPE rotation RMSE (deg)"},
+    {"path_length_m", "Path length (m)"},
+    {"end_gap_m", "Start-to-end gap (m)"},
+    {"drift_pct", "Gap / path length (%)"},
+    {"time_mean_us", "Time per frame (us)"},
+    {"time_median_us", "Median time per frame (us)"},
+    {"features_used", "Lines used per frame"},
+    {"features_available", "Lines available per frame"},
+    {"rebootstraps", "Re-bootstraps"},
+    {"lost_frames", "Lost frames"},
+};
+
+const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
+
+std::string Join(const std::string& dir, const std::string& file) { return (fs::path(dir) / file).string(); }
+
+std::vector<std::string> PointValues(const std::vector<SweepPoint>& points, size_t p) {
+  std::vector<std::string> values;
+  for (const nlohmann::json& v : points.at(p).values) values.push_back(FormatValue(v));
+  return values;
+}
+
+// Method index from its id; throws naming the file and line.
+size_t MethodIndex(const ExperimentConfig& config, const std::string& id, const std::string& where) {
+  for (size_t m = 0; m < config.methods.size(); ++m) {
+    if (config.methods[m].Id() == id) return m;
+  }
+  throw std::runtime_error(where + ": method '" + id + "' is not in the config");
+}
+
+size_t ParseIndex(const std::string& text, const std::string& where) {
+  const double v = ParseDouble(text);
+  if (!(v >= 0) || v != std::floor(v) || v > 1e15) throw std::runtime_error(where + ": expected an index, got '" + text + "'");
+  return static_cast<size_t>(v);
+}
+
+// The point index of a row; checks that the sweep columns agree with the config.
+size_t PointOfRow(const CsvTable& table, const std::vector<std::string>& row, const ExperimentConfig& config,
+                  const std::vector<SweepPoint>& points, const std::string& where) {
+  const size_t p = ParseIndex(row[table.Column("point")], where);
+  if (p >= points.size()) throw std::runtime_error(where + ": sweep point " + std::to_string(p) + " is not in the config");
+  const std::vector<std::string> values = PointValues(points, p);
+  const std::vector<std::string> columns = SweepColumns(config);
+  for (size_t a = 0; a < columns.size(); ++a) {
+    if (row[table.Column(columns[a])] != values[a]) {
+      throw std::runtime_error(where + ": " + columns[a] + " = '" + row[table.Column(columns[a])] +
+                               "' does not match sweep point " + std::to_string(p) + " of the config");
+    }
+  }
+  return p;
+}
+
+std::string Sig(double v) {
+  if (!std::isfinite(v)) return std::isnan(v) ? "n/a" : (v > 0 ? "inf" : "-inf");
+  char buffer[64];
+  if (std::fabs(v) >= 1000.0) {
+    std::snprintf(buffer, sizeof(buffer), "%.0f", v);
+  } else {
+    std::snprintf(buffer, sizeof(buffer), "%.3g", v);
+  }
+  return buffer;
+}
+
+std::string TexEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '_': case '%': case '&': case '#': case '$': case '{': case '}':
+        out += '\\';
+        out += c;
+        break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '\\': out += "\\textbackslash{}"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string MdEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::vector<int> TableMetrics(const ExperimentConfig& config) {
+  std::vector<int> metrics;
+  for (const std::string& name : config.table_metrics) metrics.push_back(TrialMetricFromName(name));
+  return metrics;
+}
+
+std::string MetricsFrameText(const ExperimentConfig& config) {
+  return config.metrics_frame < 0 ? std::string("the last frame")
+                                  : "frame " + std::to_string(config.metrics_frame);
+}
+
+std::string TrialsText(const SummaryRow& row) {
+  return row.finite_trials == row.trials ? std::to_string(row.trials)
+                                         : std::to_string(row.finite_trials) + "/" + std::to_string(row.trials);
+}
+
+}  // namespace
+
+const char* TrialMetricName(int metric) {
+  if (metric < 0 || metric >= kNumTrialMetrics) return "unknown";
+  return kMetrics[metric].name;
+}
+
+int TrialMetricFromName(const std::string& name) {
+  for (int m = 0; m < kNumTrialMetrics; ++m) {
+    if (name == kMetrics[m].name) return m;
+  }
+  return -1;
+}
+
+std::string MetricTitle(int metric) {
+  if (metric < 0 || metric >= kNumTrialMetrics) return "unknown";
+  return kMetrics[metric].title;
+}
+
+std::vector<std::string> SweepColumns(const ExperimentConfig& config) {
+  std::vector<std::string> columns;
+  for (const SweepAxis& a : config.sweep) columns.push_back(a.parameter);
+  return columns;
+}
+
+void WriteRawResults(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  const std::vector<std::string> sweep_columns = SweepColumns(config);
+  fs::create_directories(Join(dir, "raw"));
+
+  std::vector<std::string> header = {"method", "point"};
+  header.insert(header.end(), sweep_columns.begin(), sweep_columns.end());
+  for (const char* c : {"trial", "seed", "n_frames", "metrics_frame"}) header.push_back(c);
+  for (int m = 0; m < kNumTrialMetrics; ++m) header.push_back(TrialMetricName(m));
+  header.push_back("finite");
+  std::string csv = CsvLine(header);
+  bool any_curve = false, any_trajectory = false;
+  for (const TrialResult& t : trials) {
+    std::vector<std::string> row = {config.methods.at(t.method_index).Id(), std::to_string(t.point_index)};
+    for (const std::string& v : PointValues(points, t.point_index)) row.push_back(v);
+    row.push_back(std::to_string(t.trial));
+    row.push_back(std::to_string(t.seed));
+    row.push_back(std::to_string(t.frames));
+    row.push_back(std::to_string(t.metrics_frame));
+    for (double v : t.metrics) row.push_back(FormatDouble(v));
+    row.push_back(t.finite ? "true" : "false");
+    csv += CsvLine(row);
+    any_curve = any_curve || !t.curve.empty();
+    any_trajectory = any_trajectory || !t.estimate.empty();
+  }
+  WriteTextFileAtomically(Join(dir, "raw/trials.csv"), csv);
+
+  if (any_curve) {
+    std::vector<std::string> h = {"method", "point"};
+    h.insert(h.end(), sweep_columns.begin(), sweep_columns.end());
+    for (const char* c : {"trial", "frame", "time_s", "rot_err_deg", "trans_err_m"}) h.push_back(c);
+    std::string curves = CsvLine(h);
+    for (const TrialResult& t : trials) {
+      std::vector<std::string> prefix = {config.methods.at(t.method_index).Id(), std::to_string(t.point_index)};
+      for (const std::string& v : PointValues(points, t.point_index)) prefix.push_back(v);
+      prefix.push_back(std::to_string(t.trial));
+      for (const FrameError& e : t.curve) {
+        std::vector<std::string> row = prefix;
+        row.push_back(std::to_string(e.frame));
+        row.push_back(FormatDouble(e.time_s));
+        row.push_back(FormatDouble(e.rot_err_deg));
+        row.push_back(FormatDouble(e.trans_err_m));
+        curves += CsvLine(row);
+      }
+    }
+    WriteTextFileAtomically(Join(dir, "raw/curves.csv"), curves);
+  }
+
+  const std::string tdir = Join(dir, "raw/trajectories");
+  fs::remove_all(tdir);  // this program's own folder: no stale files from an earlier run
+  if (any_trajectory) {
+    fs::create_directories(tdir);
+    std::vector<std::string> h = {"method", "point"};
+    h.insert(h.end(), sweep_columns.begin(), sweep_columns.end());
+    for (const char* c : {"trial", "estimate", "ground_truth"}) h.push_back(c);
+    std::string index = CsvLine(h);
+    for (const TrialResult& t : trials) {
+      if (t.estimate.empty()) continue;
+      const std::string tag = "p" + std::to_string(t.point_index) + "_t" + std::to_string(t.trial);
+      const std::string est_file = "m" + std::to_string(t.method_index) + "_" + tag + ".tum";
+      const std::string gt_file = "gt_" + tag + ".tum";
+      WriteTumTrajectory(Join(tdir, est_file), t.estimate);
+      WriteTumTrajectory(Join(tdir, gt_file), t.ground_truth);
+      std::vector<std::string> row = {config.methods.at(t.method_index).Id(), std::to_string(t.point_index)};
+      for (const std::string& v : PointValues(points, t.point_index)) row.push_back(v);
+      row.push_back(std::to_string(t.trial));
+      row.push_back(est_file);
+      row.push_back(gt_file);
+      index += CsvLine(row);
+    }
+    WriteTextFileAtomically(Join(tdir, "index.csv"), index);
+  }
+}
+
+std::vector<TrialResult> ReadRawResults(const std::string& dir, const ExperimentConfig& config) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  const CsvTable table = ReadCsvFile(Join(dir, "raw/trials.csv"));
+  std::vector<TrialResult> trials;
+  std::map<std::tuple<size_t, size_t, int>, size_t> by_key;
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const std::vector<std::string>& row = table.rows[r];
+    const std::string where = table.where + ":" + std::to_string(r + 2);
+    try {
+      TrialResult t;
+      t.method_index = MethodIndex(config, row[table.Column("method")], where);
+      t.point_index = PointOfRow(table, row, config, points, where);
+      t.trial = static_cast<int>(ParseIndex(row[table.Column("trial")], where));
+      t.seed = std::stoull(row[table.Column("seed")]);
+      t.frames = static_cast<int>(ParseIndex(row[table.Column("n_frames")], where));
+      t.metrics_frame = static_cast<int>(ParseIndex(row[table.Column("metrics_frame")], where));
+      for (int m = 0; m < kNumTrialMetrics; ++m) t.metrics[m] = ParseDouble(row[table.Column(TrialMetricName(m))]);
+      const std::string finite = row[table.Column("finite")];
+      if (finite != "true" && finite != "false") throw std::runtime_error("finite must be true or false");
+      t.finite = finite == "true";
+      if (t.trial >= config.trials) throw std::runtime_error("trial " + std::to_string(t.trial) + " is not in the config");
+      const auto key = std::make_tuple(t.method_index, t.point_index, t.trial);
+      if (by_key.count(key)) throw std::runtime_error("the same (method, point, trial) appears twice");
+      by_key[key] = trials.size();
+      trials.push_back(std::move(t));
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      throw std::runtime_error(what.rfind(where, 0) == 0 ? what : where + ": " + what);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(where + ": " + e.what());
+    }
+  }
+
+  const std::string curves_path = Join(dir, "raw/curves.csv");
+  if (fs::exists(curves_path)) {
+    const CsvTable curves = ReadCsvFile(curves_path);
+    for (size_t r = 0; r < curves.rows.size(); ++r) {
+      const std::vector<std::string>& row = curves.rows[r];
+      const std::string where = curves.where + ":" + std::to_string(r + 2);
+      try {
+        const size_t m = MethodIndex(config, row[curves.Column("method")], where);
+        const size_t p = PointOfRow(curves, row, config, points, where);
+        const int trial = static_cast<int>(ParseIndex(row[curves.Column("trial")], where));
+        const auto it = by_key.find(std::make_tuple(m, p, trial));
+        if (it == by_key.end()) throw std::runtime_error("no row of raw/trials.csv for this curve");
+        FrameError e;
+        e.frame = static_cast<int>(ParseIndex(row[curves.Column("frame")], where));
+        e.time_s = ParseDouble(row[curves.Column("time_s")]);
+        e.rot_err_deg = ParseDouble(row[curves.Column("rot_err_deg")]);
+        e.trans_err_m = ParseDouble(row[curves.Column("trans_err_m")]);
+        trials[it->second].curve.push_back(e);
+      } catch (const std::exception& e) {
+        const std::string what = e.what();
+        throw std::runtime_error(what.rfind(where, 0) == 0 ? what : where + ": " + what);
+      }
+    }
+  }
+
+  const std::string index_path = Join(dir, "raw/trajectories/index.csv");
+  if (fs::exists(index_path)) {
+    const CsvTable index = ReadCsvFile(index_path);
+    for (size_t r = 0; r < index.rows.size(); ++r) {
+      const std::vector<std::string>& row = index.rows[r];
+      const std::string where = index.where + ":" + std::to_string(r + 2);
+      const size_t m = MethodIndex(config, row[index.Column("method")], where);
+      const size_t p = PointOfRow(index, row, config, points, where);
+      const int trial = static_cast<int>(ParseIndex(row[index.Column("trial")], where));
+      const auto it = by_key.find(std::make_tuple(m, p, trial));
+      if (it == by_key.end()) throw std::runtime_error(where + ": no row of raw/trials.csv for this trajectory");
+      trials[it->second].estimate = ReadTumTrajectory(Join(dir, "raw/trajectories/" + row[index.Column("estimate")]));
+      trials[it->second].ground_truth = ReadTumTrajectory(Join(dir, "raw/trajectories/" + row[index.Column("ground_truth")]));
+    }
+  }
+  return trials;
+}
+
+std::vector<SummaryRow> SummarizeTrials(const ExperimentConfig& /*config*/, const std::vector<TrialResult>& trials) {
+  std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> groups;
+  for (const TrialResult& t : trials) groups[{t.method_index, t.point_index}].push_back(&t);
+  std::vector<SummaryRow> rows;
+  for (const auto& [key, group] : groups) {
+    SummaryRow row;
+    row.method = key.first;
+    row.point = key.second;
+    row.trials = group.size();
+    std::vector<const TrialResult*> sorted = group;
+    std::sort(sorted.begin(), sorted.end(), [](const TrialResult* a, const TrialResult* b) { return a->trial < b->trial; });
+    for (int m = 0; m < kNumTrialMetrics; ++m) {
+      std::vector<double> values;
+      for (const TrialResult* t : sorted) values.push_back(t->finite ? t->metrics[m] : std::nan(""));
+      row.metrics[m] = Summarize(values);
+    }
+    for (const TrialResult* t : sorted) row.finite_trials += t->finite ? 1 : 0;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string SummaryCsv(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  std::vector<std::string> header = {"method", "point"};
+  for (const std::string& c : SweepColumns(config)) header.push_back(c);
+  header.push_back("trials");
+  header.push_back("finite_trials");
+  for (int m = 0; m < kNumTrialMetrics; ++m) {
+    for (const char* suffix : kStatSuffixes) header.push_back(std::string(TrialMetricName(m)) + suffix);
+  }
+  std::string csv = CsvLine(header);
+  for (const SummaryRow& r : rows) {
+    std::vector<std::string> row = {config.methods.at(r.method).Id(), std::to_string(r.point)};
+    for (const std::string& v : PointValues(points, r.point)) row.push_back(v);
+    row.push_back(std::to_string(r.trials));
+    row.push_back(std::to_string(r.finite_trials));
+    for (const Summary& s : r.metrics) {
+      for (double v : {s.mean, s.median, s.p2_5, s.p97_5}) row.push_back(FormatDouble(v));
+    }
+    csv += CsvLine(row);
+  }
+  return csv;
+}
+
+std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  const std::vector<int> metrics = TableMetrics(config);
+  std::string md = "# " + config.title + "\n\n";
+  md += std::to_string(config.trials) + " trials per method and sweep point (trial k simulates with seed TrialSeed(" +
+        std::to_string(config.seed) + ", k), the same for every method and sweep value). Errors: the accumulated error "
+        "of the estimated left-camera pose against the ground truth at " + MetricsFrameText(config) +
+        " (frames count from 0; alignment none). Each metric: mean, median and the 95 % interval "
+        "[2.5th, 97.5th percentile] over trials (linear interpolation between order statistics). "
+        "Times: wall time of one Track() call.\n\n";
+  md += "| Method |";
+  std::string rule = "|---|";
+  for (const SweepAxis& a : config.sweep) {
+    md += " " + MdEscape(a.label) + " |";
+    rule += "---:|";
+  }
+  md += " Trials |";
+  rule += "---:|";
+  for (int m : metrics) {
+    md += " " + MdEscape(MetricTitle(m)) + " mean | median | 95 % interval |";
+    rule += "---:|---:|---:|";
+  }
+  md += "\n" + rule + "\n";
+  for (const SummaryRow& r : rows) {
+    md += "| " + MdEscape(config.methods.at(r.method).Id()) + " |";
+    for (const std::string& v : PointValues(points, r.point)) md += " " + MdEscape(v) + " |";
+    md += " " + TrialsText(r) + " |";
+    for (int m : metrics) {
+      const Summary& s = r.metrics[m];
+      md += " " + Sig(s.mean) + " | " + Sig(s.median) + " | [" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "] |";
+    }
+    md += "\n";
+  }
+  bool any_nonfinite = false;
+  for (const SummaryRow& r : rows) any_nonfinite = any_nonfinite || r.finite_trials != r.trials;
+  if (any_nonfinite) md += "\nTrials shown as f/n: only the f trials with finite poses enter the statistics.\n";
+  return md;
+}
+
+std::string SummaryLatex(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  const std::vector<int> metrics = TableMetrics(config);
+  const size_t lead = 2 + config.sweep.size();
+  std::string tex = "% " + config.title + ": generated by run_experiment; needs \\usepackage{booktabs}\n";
+  tex += "% mean, median and 95 % interval [2.5th, 97.5th percentile] over " + std::to_string(config.trials) +
+         " trials; errors at " + MetricsFrameText(config) + "\n";
+  tex += "\\begin{tabular}{l" + std::string(lead - 1, 'r') + std::string(3 * metrics.size(), 'r') + "}\n\\toprule\n";
+  tex += std::string(lead - 1, '&');
+  for (int m : metrics) tex += " & \\multicolumn{3}{c}{" + TexEscape(MetricTitle(m)) + "}";
+  tex += " \\\\\n";
+  for (size_t i = 0; i < metrics.size(); ++i) {
+    const size_t first = lead + 1 + 3 * i;
+    tex += "\\cmidrule(lr){" + std::to_string(first) + "-" + std::to_string(first + 2) + "}";
+  }
+  tex += "\nMethod";
+  for (const SweepAxis& a : config.sweep) tex += " & " + TexEscape(a.label);
+  tex += " & Trials";
+  for (size_t i = 0; i < metrics.size(); ++i) tex += " & mean & median & 95\\,\\% interval";
+  tex += " \\\\\n\\midrule\n";
+  size_t previous_method = rows.empty() ? 0 : rows.front().method;
+  for (const SummaryRow& r : rows) {
+    if (r.method != previous_method) tex += "\\midrule\n";
+    previous_method = r.method;
+    tex += TexEscape(config.methods.at(r.method).Id());
+    for (const std::string& v : PointValues(points, r.point)) tex += " & " + TexEscape(v);
+    tex += " & " + TrialsText(r);
+    for (int m : metrics) {
+      const Summary& s = r.metrics[m];
+      tex += " & " + Sig(s.mean) + " & " + Sig(s.median) + " & [" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "]";
+    }
+    tex += " \\\\\n";
+  }
+  tex += "\\bottomrule\n\\end{tabular}\n";
+  return tex;
+}
+
+std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> groups;
+  for (const TrialResult& t : trials) {
+    if (t.finite && !t.curve.empty()) groups[{t.method_index, t.point_index}].push_back(&t);
+  }
+  std::vector<std::string> header = {"method", "point"};
+  for (const std::string& c : SweepColumns(config)) header.push_back(c);
+  for (const char* c : {"frame", "trials", "rot_err_deg_mean", "trans_err_m_mean", "rot_err_deg_median", "trans_err_m_median"}) {
+    header.push_back(c);
+  }
+  std::string csv = CsvLine(header);
+  for (auto& [key, group] : groups) {
+    std::sort(group.begin(), group.end(), [](const TrialResult* a, const TrialResult* b) { return a->trial < b->trial; });
+    std::vector<ErrorCurve> curves;
+    for (const TrialResult* t : group) curves.push_back(t->curve);
+    const ErrorCurve mean = MeanErrorCurve(curves);
+    for (size_t k = 0; k < mean.size(); ++k) {
+      std::vector<double> rot, trans;
+      for (const ErrorCurve& c : curves) {
+        rot.push_back(c[k].rot_err_deg);
+        trans.push_back(c[k].trans_err_m);
+      }
+      std::vector<std::string> row = {config.methods.at(key.first).Id(), std::to_string(key.second)};
+      for (const std::string& v : PointValues(points, key.second)) row.push_back(v);
+      row.push_back(std::to_string(mean[k].frame));
+      row.push_back(std::to_string(curves.size()));
+      row.push_back(FormatDouble(mean[k].rot_err_deg));
+      row.push_back(FormatDouble(mean[k].trans_err_m));
+      row.push_back(FormatDouble(Quantile(rot, 0.5)));
+      row.push_back(FormatDouble(Quantile(trans, 0.5)));
+      csv += CsvLine(row);
+    }
+  }
+  return csv;
+}
+
+void WriteSummaries(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
+  fs::create_directories(dir);
+  const std::vector<SummaryRow> rows = SummarizeTrials(config, trials);
+  WriteTextFileAtomically(Join(dir, "summary.csv"), SummaryCsv(config, rows));
+  WriteTextFileAtomically(Join(dir, "summary.md"), SummaryMarkdown(config, rows));
+  WriteTextFileAtomically(Join(dir, "summary.tex"), SummaryLatex(config, rows));
+  if (config.per_frame_curves) WriteTextFileAtomically(Join(dir, "curves.csv"), CurvesCsv(config, trials));
+}
+
+MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
+  if (dirs.empty()) throw std::runtime_error("--merge: no directory given");
+  MergedRun merged;
+  nlohmann::json first_config;
+  for (size_t d = 0; d < dirs.size(); ++d) {
+    const std::string config_path = Join(dirs[d], "config.resolved.json");
+    const nlohmann::json j = ReadJsonFile(config_path);
+    ExperimentConfig config = ExperimentConfigFromJson(j, config_path);
+    const nlohmann::json canonical = ExperimentConfigToJson(config);
+    if (d == 0) {
+      merged.config = config;
+      first_config = canonical;
+    } else if (canonical != first_config) {
+      throw std::runtime_error(config_path + ": the config differs from " + Join(dirs[0], "config.resolved.json") +
+                               " (shards of different experiments?)");
+    }
+    const std::string run_path = Join(dirs[d], "run.json");
+    nlohmann::json run = fs::exists(run_path) ? ReadJsonFile(run_path) : nlohmann::json::object();
+    run["directory"] = dirs[d];
+    merged.shards.push_back(run);
+    for (TrialResult& t : ReadRawResults(dirs[d], config)) merged.trials.push_back(std::move(t));
+  }
+  // Every job exactly once.
+  const std::vector<Job> jobs = ExperimentJobs(merged.config);
+  const size_t points = ExpandSweep(merged.config.sweep).size();
+  auto job_index = [&](const TrialResult& t) {
+    return (t.method_index * points + t.point_index) * static_cast<size_t>(merged.config.trials) + static_cast<size_t>(t.trial);
+  };
+  std::vector<int> seen(jobs.size(), 0);
+  for (const TrialResult& t : merged.trials) ++seen.at(job_index(t));
+  const std::vector<SweepPoint> sweep_points = ExpandSweep(merged.config.sweep);
+  for (const Job& job : jobs) {
+    if (seen[job.index] == 0) {
+      throw std::runtime_error("--merge: job " + std::to_string(job.index) + " (" +
+                               DescribeJob(merged.config, sweep_points, job) + ") is in none of the directories (a shard missing?)");
+    }
+    if (seen[job.index] > 1) {
+      throw std::runtime_error("--merge: job " + std::to_string(job.index) + " (" +
+                               DescribeJob(merged.config, sweep_points, job) + ") appears in more than one directory");
+    }
+  }
+  std::sort(merged.trials.begin(), merged.trials.end(),
+            [&](const TrialResult& a, const TrialResult& b) { return job_index(a) < job_index(b); });
+  return merged;
+}
+
+}  // namespace slt

@@ -1,0 +1,329 @@
+#include "experiments/experiment_output.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <thread>
+
+#include "common/json_reader.h"
+#include "experiments/csv.h"
+#include "experiments/regression.h"
+#include "experiments/statistics.h"
+
+namespace slt {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string TempDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("slt_output_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+TEST(Statistics, QuantileInterpolatesLinearlyBetweenOrderStatistics) {
+  // Values checked against numpy.percentile (default "linear" method).
+  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.025), 1.075);
+  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.975), 3.925);
+  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 1.0), 4.0);
+  std::vector<double> twenty;
+  for (int i = 0; i < 20; ++i) twenty.push_back(i);
+  EXPECT_DOUBLE_EQ(Quantile(twenty, 0.025), 0.475);  // np.percentile(range(20), 2.5)
+  EXPECT_DOUBLE_EQ(Quantile(twenty, 0.975), 18.525);
+  EXPECT_DOUBLE_EQ(Quantile({7}, 0.975), 7.0);
+  EXPECT_TRUE(std::isnan(Quantile({}, 0.5)));
+}
+
+TEST(Statistics, SummaryLeavesOutNonFiniteValues) {
+  const Summary s = Summarize({1, 2, std::nan(""), 3, 10});
+  EXPECT_EQ(s.count, 4u);
+  EXPECT_DOUBLE_EQ(s.mean, 4.0);
+  EXPECT_DOUBLE_EQ(s.median, 2.5);
+  EXPECT_DOUBLE_EQ(s.p2_5, 1.075);
+  EXPECT_DOUBLE_EQ(s.p97_5, 10 - 0.075 * 7);
+  const Summary none = Summarize({std::nan("")});
+  EXPECT_EQ(none.count, 0u);
+  EXPECT_TRUE(std::isnan(none.mean));
+}
+
+TEST(Csv, QuotesAndParsesBack) {
+  const std::vector<std::string> fields = {"plain", "with, comma", "with \"quote\"", "line\nbreak", ""};
+  const CsvTable t = ParseCsv(CsvLine({"a", "b", "c", "d", "e"}) + CsvLine(fields), "t.csv");
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(t.rows[0], fields);
+  EXPECT_EQ(t.Column("c"), 2u);
+  EXPECT_THROW(t.Column("z"), std::runtime_error);
+  EXPECT_THROW(ParseCsv("a,b\n1,2,3\n", "t.csv"), std::runtime_error);
+  EXPECT_THROW(ParseCsv("a,b\n\"1,2\n", "t.csv"), std::runtime_error);
+}
+
+TEST(Csv, NumbersRoundTripExactly) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int i = 0; i < 1000; ++i) {
+    const double v = u(rng) * std::pow(10.0, static_cast<int>(u(rng)));
+    EXPECT_EQ(ParseDouble(FormatDouble(v)), v);
+  }
+  EXPECT_TRUE(std::isnan(ParseDouble(FormatDouble(std::nan("")))));
+  EXPECT_EQ(ParseDouble(FormatDouble(-HUGE_VAL)), -HUGE_VAL);
+  EXPECT_THROW(ParseDouble("1.5x"), std::invalid_argument);
+  EXPECT_THROW(ParseDouble(""), std::invalid_argument);
+}
+
+TEST(AtomicWrite, ReadersSeeTheOldOrTheNewFileNeverAPart) {
+  const std::string dir = TempDir("atomic");
+  const std::string path = dir + "/summary.csv";
+  const std::string a(1 << 20, 'a'), b(1 << 20, 'b');
+  WriteTextFileAtomically(path, a);
+  std::atomic<bool> done{false};
+  std::atomic<int> reads{0}, torn{0};
+  std::thread reader([&] {
+    while (!done.load()) {
+      const std::string s = ReadTextFile(path);
+      if (s != a && s != b) ++torn;
+      ++reads;
+    }
+  });
+  for (int i = 0; i < 40; ++i) WriteTextFileAtomically(path, i % 2 ? a : b);
+  done.store(true);
+  reader.join();
+  EXPECT_EQ(torn.load(), 0);
+  EXPECT_GT(reads.load(), 0);
+  // Nothing but the file is left in the directory (no temporary files).
+  size_t entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    ++entries;
+    EXPECT_EQ(entry.path().filename(), "summary.csv");
+  }
+  EXPECT_EQ(entries, 1u);
+}
+
+TEST(AtomicWrite, AFailedWriteLeavesNoFile) {
+  const std::string dir = TempDir("atomic_fail");
+  fs::create_directories(dir + "/target");  // a directory where the file should go: rename fails
+  EXPECT_THROW(WriteTextFileAtomically(dir + "/target", "x"), std::runtime_error);
+  size_t entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    ++entries;
+    EXPECT_EQ(entry.path().filename(), "target");
+  }
+  EXPECT_EQ(entries, 1u);
+  EXPECT_TRUE(fs::is_empty(dir + "/target"));
+}
+
+ExperimentConfig TwoMethodConfig() {
+  return ExperimentConfigFromJson(
+      {{"name", "out"},
+       {"trials", 3},
+       {"simulation", {{"frames", 5}}},
+       {"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {0, 1.5}}, {"label", "Noise (px)"}}}},
+       {"methods", {"trifocal_line_ekf", {{"name", "trifocal_line_ekf"}, {"label", "paper, \"preset\" | 50%"}}}},
+       {"per_frame_curves", true}},
+      "out.json");
+}
+
+// Synthetic trials with known values: rot_err_deg = 1 + trial + point, NaN for a non-finite trial.
+std::vector<TrialResult> SyntheticTrials(const ExperimentConfig& c) {
+  std::vector<TrialResult> trials;
+  for (size_t m = 0; m < 2; ++m) {
+    for (size_t p = 0; p < 2; ++p) {
+      for (int k = 0; k < 3; ++k) {
+        TrialResult t;
+        t.method_index = m;
+        t.point_index = p;
+        t.trial = k;
+        t.seed = 1000 + static_cast<std::uint64_t>(k);
+        t.frames = 5;
+        t.metrics_frame = 4;
+        for (int i = 0; i < kNumTrialMetrics; ++i) t.metrics[i] = 0.1 * i + 1e-17 * k + 1.0 / 3.0;
+        t.metrics[kRotErrDeg] = 1.0 + k + static_cast<double>(p);
+        t.metrics[kTransErrM] = 0.001 * (1 + k) * (m + 1);
+        t.finite = !(m == 1 && p == 1 && k == 2);
+        if (!t.finite) t.metrics[kRotErrDeg] = std::nan("");
+        for (int f = 0; f < 5; ++f) {
+          FrameError e;
+          e.frame = f;
+          e.time_s = f / 30.0;
+          e.rot_err_deg = 0.01 * f * (k + 1);
+          e.trans_err_m = 0.1 * f;
+          t.curve.push_back(e);
+        }
+        trials.push_back(t);
+      }
+    }
+  }
+  (void)c;
+  return trials;
+}
+
+TEST(Output, RawResultsReadBackExactly) {
+  const ExperimentConfig c = TwoMethodConfig();
+  const std::vector<TrialResult> trials = SyntheticTrials(c);
+  const std::string dir = TempDir("raw");
+  WriteRawResults(dir, c, trials);
+  const std::vector<TrialResult> back = ReadRawResults(dir, c);
+  ASSERT_EQ(back.size(), trials.size());
+  for (size_t i = 0; i < trials.size(); ++i) {
+    EXPECT_EQ(back[i].method_index, trials[i].method_index);
+    EXPECT_EQ(back[i].point_index, trials[i].point_index);
+    EXPECT_EQ(back[i].trial, trials[i].trial);
+    EXPECT_EQ(back[i].seed, trials[i].seed);
+    EXPECT_EQ(back[i].finite, trials[i].finite);
+    for (int m = 0; m < kNumTrialMetrics; ++m) {
+      if (std::isnan(trials[i].metrics[m])) {
+        EXPECT_TRUE(std::isnan(back[i].metrics[m]));
+      } else {
+        EXPECT_EQ(back[i].metrics[m], trials[i].metrics[m]) << TrialMetricName(m);
+      }
+    }
+    ASSERT_EQ(back[i].curve.size(), 5u);
+    EXPECT_EQ(back[i].curve[3].rot_err_deg, trials[i].curve[3].rot_err_deg);
+  }
+  // A row of another experiment is refused, naming the line.
+  WriteTextFileAtomically(dir + "/raw/trials.csv",
+                          ReadTextFile(dir + "/raw/trials.csv") +
+                              "nobody,0,0,0,1,5,4" + std::string(kNumTrialMetrics + 1, ',') + "true\n");
+  try {
+    ReadRawResults(dir, c);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("trials.csv:14: method 'nobody' is not in the config"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Output, SummaryStatisticsPerMethodAndPoint) {
+  const ExperimentConfig c = TwoMethodConfig();
+  const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[1].method, 0u);
+  EXPECT_EQ(rows[1].point, 1u);
+  EXPECT_EQ(rows[1].trials, 3u);
+  EXPECT_DOUBLE_EQ(rows[1].metrics[kRotErrDeg].mean, 3.0);    // 2, 3, 4
+  EXPECT_DOUBLE_EQ(rows[1].metrics[kRotErrDeg].p2_5, 2.05);   // 2 + 0.05 * 1
+  EXPECT_DOUBLE_EQ(rows[1].metrics[kRotErrDeg].p97_5, 3.95);
+  EXPECT_EQ(rows[3].finite_trials, 2u);                        // one trial lost its pose
+  EXPECT_EQ(rows[3].metrics[kRotErrDeg].count, 2u);
+  EXPECT_DOUBLE_EQ(rows[3].metrics[kRotErrDeg].mean, 2.5);
+  EXPECT_DOUBLE_EQ(rows[3].metrics[kTransErrM].mean, 0.003);   // the non-finite trial is left out
+}
+
+TEST(Output, SummaryTablesInCsvMarkdownAndLatex) {
+  const ExperimentConfig c = TwoMethodConfig();
+  const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
+  const CsvTable csv = ParseCsv(SummaryCsv(c, rows), "summary.csv");
+  ASSERT_EQ(csv.rows.size(), 4u);
+  EXPECT_EQ(csv.rows[2][csv.Column("method")], "paper, \"preset\" | 50%");
+  EXPECT_EQ(csv.rows[1][csv.Column("noise.endpoint_px")], "1.5");
+  EXPECT_EQ(ParseDouble(csv.rows[1][csv.Column("rot_err_deg_mean")]), 3.0);
+  EXPECT_EQ(csv.rows[3][csv.Column("finite_trials")], "2");
+
+  const std::string md = SummaryMarkdown(c, rows);
+  EXPECT_NE(md.find("| Method | Noise (px) | Trials | Rotation error (deg) mean | median | 95 % interval |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| trifocal_line_ekf | 1.5 | 3 | 3 | 3 | [2.05, 3.95] |"), std::string::npos) << md;
+  EXPECT_NE(md.find("paper, \"preset\" \\| 50%"), std::string::npos);
+  EXPECT_NE(md.find("| 2/3 |"), std::string::npos);
+
+  const std::string tex = SummaryLatex(c, rows);
+  for (const char* s : {"\\toprule", "\\midrule", "\\bottomrule", "\\cmidrule(lr){4-6}", "paper, \"preset\" | 50\\%",
+                        "\\multicolumn{3}{c}{Rotation error (deg)}"}) {
+    EXPECT_NE(tex.find(s), std::string::npos) << s << "\n" << tex;
+  }
+}
+
+TEST(Output, CurvesAreMeansOverTheFiniteTrials) {
+  const ExperimentConfig c = TwoMethodConfig();
+  const CsvTable curves = ParseCsv(CurvesCsv(c, SyntheticTrials(c)), "curves.csv");
+  ASSERT_EQ(curves.rows.size(), 4u * 5u);
+  // method 0, point 0, frame 2: rot = 0.02 * (k + 1) for k = 0, 1, 2 -> mean 0.04.
+  EXPECT_NEAR(ParseDouble(curves.rows[2][curves.Column("rot_err_deg_mean")]), 0.04, 1e-15);
+  EXPECT_EQ(curves.rows[2][curves.Column("trials")], "3");
+  EXPECT_EQ(curves.rows[17][curves.Column("trials")], "2");  // method 1, point 1
+}
+
+TEST(Regression, ToleranceNewMethodsAndUnregisteredReferenceMethods) {
+  const ExperimentConfig c = TwoMethodConfig();
+  const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
+  const json reference_config = ResolvedConfigJson(c);
+  const CsvTable same = ParseCsv(SummaryCsv(c, rows), "ref.csv");
+  const RegressionReport pass = CompareWithReference(c, rows, same, reference_config);
+  EXPECT_TRUE(pass.ok()) << pass.failures.front();
+  EXPECT_TRUE(pass.notes.empty());
+
+  // 20 % worse passes, 30 % worse fails.
+  auto scaled = [&](double factor) {
+    std::vector<SummaryRow> r = rows;
+    r[0].metrics[kRotErrDeg].mean *= factor;
+    return CompareWithReference(c, r, same, reference_config);
+  };
+  EXPECT_TRUE(scaled(1.2).ok());
+  const RegressionReport worse = scaled(1.3);
+  ASSERT_EQ(worse.failures.size(), 1u);
+  EXPECT_NE(worse.failures[0].find("'trifocal_line_ekf' at noise.endpoint_px = 0: rot_err_deg_mean"), std::string::npos)
+      << worse.failures[0];
+  // Near zero, the absolute floor applies: 0.001 m -> 0.0014 m passes (floor 0.5 mm).
+  std::vector<SummaryRow> r = rows;
+  r[0].metrics[kTransErrM].mean += 0.0004;
+  EXPECT_TRUE(CompareWithReference(c, r, same, reference_config).ok());
+  r[0].metrics[kTransErrM].mean += 0.0002;
+  EXPECT_FALSE(CompareWithReference(c, r, same, reference_config).ok());
+  // Fewer finite trials than the reference fails.
+  r = rows;
+  r[0].finite_trials = 2;
+  EXPECT_FALSE(CompareWithReference(c, r, same, reference_config).ok());
+
+  // A reference made with another config (here: more trials) is stale, whatever its numbers.
+  ExperimentConfig more_trials = c;
+  more_trials.trials = 4;
+  const RegressionReport stale = CompareWithReference(more_trials, rows, same, reference_config);
+  ASSERT_EQ(stale.failures.size(), 1u);
+  EXPECT_NE(stale.failures[0].find("the config's 'trials' differs from the reference's (3 there, 4 here)"), std::string::npos)
+      << stale.failures[0];
+
+  // A method absent from the reference is "no reference", not a failure.
+  ExperimentConfig only_first = c;
+  only_first.methods.resize(1);
+  std::vector<SummaryRow> first_rows(rows.begin(), rows.begin() + 2);
+  const CsvTable partial = ParseCsv(SummaryCsv(only_first, first_rows), "ref.csv");
+  const RegressionReport new_method = CompareWithReference(c, rows, partial, ResolvedConfigJson(only_first));
+  EXPECT_TRUE(new_method.ok());
+  ASSERT_EQ(new_method.notes.size(), 1u);
+  EXPECT_NE(new_method.notes[0].find("no reference"), std::string::npos);
+
+  // A reference method that is no longer registered fails clearly.
+  json gone = reference_config;
+  gone["methods"][1]["name"] = "retired_tracker";
+  const RegressionReport unregistered = CompareWithReference(c, rows, same, gone);
+  ASSERT_FALSE(unregistered.ok());
+  EXPECT_NE(unregistered.failures[0].find("tracker 'retired_tracker') is no longer registered"), std::string::npos)
+      << unregistered.failures[0];
+  // So does a reference method the run left out.
+  const RegressionReport left_out = CompareWithReference(only_first, first_rows, same, reference_config);
+  ASSERT_FALSE(left_out.ok());
+  EXPECT_NE(left_out.failures[0].find("was not run"), std::string::npos);
+}
+
+TEST(Regression, ExpectedBestMethod) {
+  ExperimentConfig c = TwoMethodConfig();
+  const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
+  EXPECT_TRUE(CheckExpectedBest(c, rows).ok());  // nothing expected
+  c.expect_best = "trifocal_line_ekf";
+  // Method 0 has the same rotation error and half the translation error of method 1 at point 0,
+  // but a larger rotation error at point 1 (where method 1 lost a trial).
+  const RegressionReport report = CheckExpectedBest(c, rows);
+  ASSERT_EQ(report.failures.size(), 1u) << report.table;
+  EXPECT_NE(report.failures[0].find("ordering is lost at noise.endpoint_px = 1.5"), std::string::npos) << report.failures[0];
+  c.expect_best = c.methods[1].Id();
+  const RegressionReport other = CheckExpectedBest(c, rows);
+  EXPECT_FALSE(other.ok());
+  EXPECT_NE(other.failures[0].find("trans_err_m"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace slt

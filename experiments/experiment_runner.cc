@@ -1,0 +1,209 @@
+#include "experiments/experiment_runner.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "common/random.h"
+#include "experiments/statistics.h"
+#include "methods/pose_tracker.h"
+#include "simulator/simulator.h"
+
+namespace slt {
+namespace {
+
+bool Finite(const Rigid3d& pose) { return pose.rotation.allFinite() && pose.translation.allFinite(); }
+
+double PathLength(const Trajectory& trajectory) {
+  double length = 0.0;
+  for (size_t k = 1; k < trajectory.size(); ++k) {
+    length += (trajectory[k].world_from_cam.translation - trajectory[k - 1].world_from_cam.translation).norm();
+  }
+  return length;
+}
+
+}  // namespace
+
+std::vector<Job> ExperimentJobs(const ExperimentConfig& config) {
+  const size_t points = ExpandSweep(config.sweep).size();
+  std::vector<Job> jobs;
+  jobs.reserve(config.methods.size() * points * static_cast<size_t>(config.trials));
+  for (size_t m = 0; m < config.methods.size(); ++m) {
+    for (size_t p = 0; p < points; ++p) {
+      for (int k = 0; k < config.trials; ++k) {
+        Job job;
+        job.index = jobs.size();
+        job.method = m;
+        job.point = p;
+        job.trial = k;
+        jobs.push_back(job);
+      }
+    }
+  }
+  return jobs;
+}
+
+Shard ParseShard(const std::string& text) {
+  const size_t slash = text.find('/');
+  Shard shard;
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("");
+    size_t used = 0;
+    shard.index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("");
+    const std::string count = text.substr(slash + 1);
+    shard.count = std::stoi(count, &used);
+    if (used != count.size()) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--shard: expected i/n (e.g. 0/4), got '" + text + "'");
+  }
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    throw std::invalid_argument("--shard: need 0 <= i < n, got '" + text + "'");
+  }
+  return shard;
+}
+
+std::string DescribeJob(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
+  std::string s = "method '" + config.methods[job.method].Id() + "'";
+  for (size_t a = 0; a < config.sweep.size(); ++a) {
+    s += ", " + config.sweep[a].parameter + " = " + FormatValue(points[job.point].values[a]);
+  }
+  s += ", trial " + std::to_string(job.trial) + " (simulation seed " +
+       std::to_string(TrialSeed(config.seed, static_cast<std::uint64_t>(job.trial))) + ")";
+  return s;
+}
+
+TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
+  const MethodSpec& method = config.methods[job.method];
+  const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
+  const SimulatedSequence sim = Simulate(sim_config);
+  const StereoSequence& sequence = sim.sequence;
+
+  TrialResult r;
+  r.method_index = job.method;
+  r.point_index = job.point;
+  r.trial = job.trial;
+  r.seed = sim_config.seed;
+  r.frames = static_cast<int>(sequence.frames.size());
+  r.metrics_frame = MetricsFrameFor(config, r.frames);
+
+  std::unique_ptr<PoseTracker> tracker =
+      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
+  tracker->Reset(sequence.rig);
+
+  Trajectory estimate;
+  estimate.reserve(sequence.frames.size());
+  std::vector<double> times_us;
+  times_us.reserve(sequence.frames.size());
+  double features_used = 0.0, features_available = 0.0;
+  int rebootstraps = 0, lost = 0;
+  for (size_t k = 0; k < sequence.frames.size(); ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const TrackerOutput out = tracker->Track(sequence.frames[k]);
+    const auto stop = std::chrono::steady_clock::now();
+    times_us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+    features_used += out.features_used;
+    features_available += out.features_available;
+    if (k > 0 && out.status == TrackingStatus::kReinitialized) ++rebootstraps;
+    if (out.status == TrackingStatus::kLost) ++lost;
+    r.finite = r.finite && Finite(out.cam_from_world);
+    TimedPose pose;
+    pose.time = sequence.frames[k].time;
+    pose.world_from_cam = out.cam_from_world.Inverse();
+    estimate.push_back(pose);
+  }
+
+  auto& m = r.metrics;
+  m.fill(std::numeric_limits<double>::quiet_NaN());
+  const double n = std::max<double>(1.0, static_cast<double>(sequence.frames.size()));
+  double time_sum = 0.0;
+  for (double t : times_us) time_sum += t;
+  m[kTimeMeanUs] = time_sum / n;
+  m[kTimeMedianUs] = Quantile(times_us, 0.5);
+  m[kFeaturesUsed] = features_used / n;
+  m[kFeaturesAvailable] = features_available / n;
+  m[kRebootstraps] = rebootstraps;
+  m[kLostFrames] = lost;
+  m[kPathLengthM] = PathLength(sim.ground_truth);
+  if (r.finite && !estimate.empty()) {
+    EvaluationOptions options;  // alignment none: both worlds are the first left camera
+    const TrajectoryErrors errors = EvaluateTrajectory(sim.ground_truth, estimate, options);
+    const FrameError& at = ErrorAtFrame(errors.per_frame, r.metrics_frame);
+    m[kRotErrDeg] = at.rot_err_deg;
+    m[kTransErrM] = at.trans_err_m;
+    m[kFinalRotErrDeg] = errors.Final().rot_err_deg;
+    m[kFinalTransErrM] = errors.Final().trans_err_m;
+    m[kAteTransM] = errors.ate_trans_m.rmse;
+    m[kAteRotDeg] = errors.ate_rot_deg.rmse;
+    if (errors.rpe_trans_m.count > 0) {
+      m[kRpeTransM] = errors.rpe_trans_m.rmse;
+      m[kRpeRotDeg] = errors.rpe_rot_deg.rmse;
+    }
+    m[kEndGapM] = (estimate.back().world_from_cam.translation - estimate.front().world_from_cam.translation).norm();
+    if (m[kPathLengthM] > 0.0) m[kDriftPct] = 100.0 * m[kEndGapM] / m[kPathLengthM];
+    if (config.per_frame_curves) r.curve = errors.per_frame;
+  }
+  if (job.trial < config.save_trajectories) {
+    r.ground_truth = sim.ground_truth;
+    r.estimate = std::move(estimate);
+  }
+  return r;
+}
+
+ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  const std::vector<Job> all_jobs = ExperimentJobs(config);
+  std::vector<Job> jobs;
+  for (const Job& job : all_jobs) {
+    if (options.shard.Contains(job.index)) jobs.push_back(job);
+  }
+
+  ExperimentRun run;
+  run.jobs_total = all_jobs.size();
+  int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, jobs.size()))));
+  run.threads = threads;
+  run.trials.resize(jobs.size());
+
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;  // guards done, error and the progress callback
+  size_t done = 0;
+  std::string error;
+  auto worker = [&]() {
+    while (!stop.load()) {
+      const size_t i = next.fetch_add(1);
+      if (i >= jobs.size()) return;
+      try {
+        run.trials[i] = RunTrial(config, points, jobs[i]);
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (error.empty()) error = DescribeJob(config, points, jobs[i]) + ": " + e.what();
+        stop.store(true);
+        return;
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      ++done;
+      if (options.on_progress) options.on_progress(done, jobs.size());
+    }
+  };
+  if (threads == 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (std::thread& t : pool) t.join();
+  }
+  if (!error.empty()) throw std::runtime_error(error);
+  run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+}  // namespace slt

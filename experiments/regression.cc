@@ -1,0 +1,178 @@
+#include "experiments/regression.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "methods/pose_tracker.h"
+
+namespace slt {
+namespace {
+
+std::string Num(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.4g", v);
+  return buffer;
+}
+
+std::string PointText(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t p) {
+  if (config.sweep.empty()) return "(no sweep)";
+  std::string s;
+  for (size_t a = 0; a < config.sweep.size(); ++a) {
+    s += (a ? ", " : "") + config.sweep[a].parameter + " = " + FormatValue(points[p].values[a]);
+  }
+  return s;
+}
+
+}  // namespace
+
+RegressionReport CompareWithReference(const ExperimentConfig& config, const std::vector<SummaryRow>& rows,
+                                      const CsvTable& reference, const nlohmann::json& reference_config,
+                                      const RegressionTolerance& tolerance) {
+  RegressionReport report;
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+
+  // The numbers only compare when the experiment is the same: a changed CI config needs a new
+  // reference, not a tolerance failure.
+  const nlohmann::json current = ExperimentConfigToJson(config);
+  for (const char* key : {"trials", "seed", "simulation", "sweep", "metrics_frame"}) {
+    if (!reference_config.contains(key) || reference_config[key] != current[key]) {
+      report.failures.push_back(std::string("the config's '") + key + "' differs from the reference's (" +
+                                (reference_config.contains(key) ? reference_config[key].dump() : "absent") + " there, " +
+                                current[key].dump() + " here): regenerate the reference deliberately with "
+                                "scripts/update_references.sh");
+    }
+  }
+  if (!report.failures.empty()) return report;
+
+  // Reference methods: id -> tracker name.
+  std::map<std::string, std::string> reference_methods;
+  if (reference_config.contains("methods") && reference_config["methods"].is_array()) {
+    for (const nlohmann::json& m : reference_config["methods"]) {
+      reference_methods[m.value("label", m.value("name", ""))] = m.value("name", "");
+    }
+  }
+  const size_t method_column = reference.Column("method");
+  for (const auto& row : reference.rows) {
+    if (!reference_methods.count(row[method_column])) reference_methods[row[method_column]] = row[method_column];
+  }
+  std::set<std::string> current_ids;
+  for (const MethodSpec& m : config.methods) current_ids.insert(m.Id());
+  const std::set<std::string> registered = [] {
+    std::set<std::string> names;
+    for (const TrackerInfo& info : RegisteredTrackers()) names.insert(info.name);
+    return names;
+  }();
+  for (const auto& [id, name] : reference_methods) {
+    if (!registered.count(name)) {
+      report.failures.push_back("reference method '" + id + "' (tracker '" + name +
+                                "') is no longer registered: restore it, or regenerate the references "
+                                "deliberately with scripts/update_references.sh");
+    } else if (!current_ids.count(id)) {
+      report.failures.push_back("reference method '" + id + "' was not run: the config no longer includes it "
+                                "(regenerate the references with scripts/update_references.sh if intended)");
+    }
+  }
+
+  // Reference rows by (method id, sweep values).
+  std::map<std::pair<std::string, std::vector<std::string>>, size_t> by_key;
+  const std::vector<std::string> sweep_columns = SweepColumns(config);
+  for (const std::string& c : sweep_columns) {
+    if (!reference.HasColumn(c)) {
+      report.failures.push_back(reference.where + ": no column '" + c +
+                                "': the sweep changed since the reference was made (scripts/update_references.sh)");
+      return report;
+    }
+  }
+  for (size_t r = 0; r < reference.rows.size(); ++r) {
+    std::vector<std::string> values;
+    for (const std::string& c : sweep_columns) values.push_back(reference.rows[r][reference.Column(c)]);
+    by_key[{reference.rows[r][method_column], values}] = r;
+  }
+
+  const struct {
+    int metric;
+    double floor;
+  } checked[] = {{kRotErrDeg, tolerance.rot_floor_deg}, {kTransErrM, tolerance.trans_floor_m}};
+  std::set<std::string> no_reference;
+  for (const SummaryRow& row : rows) {
+    const std::string& id = config.methods.at(row.method).Id();
+    if (!reference_methods.count(id)) {
+      no_reference.insert(id);
+      continue;
+    }
+    std::vector<std::string> values;
+    for (const nlohmann::json& v : points.at(row.point).values) values.push_back(FormatValue(v));
+    const auto it = by_key.find({id, values});
+    const std::string at = "'" + id + "' at " + PointText(config, points, row.point);
+    if (it == by_key.end()) {
+      report.failures.push_back(at + ": no reference row (the sweep changed? regenerate with scripts/update_references.sh)");
+      continue;
+    }
+    const std::vector<std::string>& ref = reference.rows[it->second];
+    const double ref_finite = ParseDouble(ref[reference.Column("finite_trials")]);
+    if (static_cast<double>(row.finite_trials) < ref_finite) {
+      report.failures.push_back(at + ": " + std::to_string(row.finite_trials) + " trials with finite poses, reference " +
+                                Num(ref_finite));
+    }
+    for (const auto& c : checked) {
+      const std::string column = std::string(TrialMetricName(c.metric)) + "_mean";
+      const double reference_value = ParseDouble(ref[reference.Column(column)]);
+      const double current = row.metrics[c.metric].mean;
+      const double limit = std::max(tolerance.relative * reference_value, reference_value + c.floor);
+      const bool pass = std::isfinite(current) && (!std::isfinite(reference_value) || current <= limit);
+      report.table += (pass ? "  ok    " : "  FAIL  ") + at + "  " + column + " = " + Num(current) +
+                      "  (reference " + Num(reference_value) + ", limit " + Num(limit) + ")\n";
+      if (!pass) {
+        report.failures.push_back(at + ": " + column + " = " + Num(current) + " exceeds the limit " + Num(limit) +
+                                  " (reference " + Num(reference_value) + "; limit = max(" + Num(tolerance.relative) +
+                                  " x reference, reference + " + Num(c.floor) + "))");
+      }
+    }
+  }
+  for (const std::string& id : no_reference) {
+    report.notes.push_back("'" + id + "': no reference (a method registered after the references were made); "
+                           "not checked. Add it with scripts/update_references.sh");
+  }
+  return report;
+}
+
+RegressionReport CheckExpectedBest(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  RegressionReport report;
+  if (config.expect_best.empty()) return report;
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  std::map<size_t, std::vector<const SummaryRow*>> by_point;
+  for (const SummaryRow& row : rows) by_point[row.point].push_back(&row);
+  for (const auto& [point, group] : by_point) {
+    const SummaryRow* best = nullptr;
+    for (const SummaryRow* row : group) {
+      if (config.methods.at(row->method).Id() == config.expect_best) best = row;
+    }
+    if (best == nullptr) {
+      report.failures.push_back("'" + config.expect_best + "' has no result at " + PointText(config, points, point));
+      continue;
+    }
+    for (const SummaryRow* other : group) {
+      if (other == best) continue;
+      for (int metric : {kRotErrDeg, kTransErrM}) {
+        const double mine = best->metrics[metric].mean;
+        const double theirs = other->metrics[metric].mean;
+        const bool pass = std::isfinite(mine) && (!std::isfinite(theirs) || mine <= theirs);
+        report.table += std::string(pass ? "  ok    " : "  FAIL  ") + "'" + config.expect_best + "' " +
+                        TrialMetricName(metric) + " mean " + Num(mine) + " vs '" + config.methods.at(other->method).Id() +
+                        "' " + Num(theirs) + " at " + PointText(config, points, point) + "\n";
+        if (!pass) {
+          report.failures.push_back("the paper's ordering is lost at " + PointText(config, points, point) + ": '" +
+                                    config.methods.at(other->method).Id() + "' has a lower mean " +
+                                    TrialMetricName(metric) + " (" + Num(theirs) + ") than '" + config.expect_best +
+                                    "' (" + Num(mine) + ")");
+        }
+      }
+    }
+  }
+  return report;
+}
+
+}  // namespace slt

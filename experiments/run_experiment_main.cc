@@ -1,0 +1,151 @@
+// run_experiment: runs an experiment config (docs/experiments.md) and writes its raw rows,
+// summaries and plots.
+//
+//   run_experiment CONFIG [--out DIR] [--threads N] [--trials N] [--shard i/n] [--no-plots] [--quiet]
+//   run_experiment --merge DIR... [--out DIR] [--no-plots] [--quiet]
+//
+// CONFIG is a path, or a bare name found in experiments/configs/ ("noise_sweep",
+// "noise_sweep.json", "ci/noise_sweep_ci"). Errors: one line "run_experiment: error: ..." on
+// stderr, exit 1 (2 for command-line errors).
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/json_reader.h"
+#include "experiments/experiment_driver.h"
+#include "experiments/regression.h"
+
+namespace {
+
+// A progress bar with an ETA on stderr, redrawn at most every 0.2 s.
+class ProgressBar {
+ public:
+  void Update(size_t done, size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (done < total && now - last_draw_ < std::chrono::milliseconds(200)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double fraction = total ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+    const int width = 30;
+    const int filled = static_cast<int>(fraction * width);
+    std::string bar(static_cast<size_t>(filled), '#');
+    bar.resize(width, '.');
+    std::string eta = "--:--";
+    if (done > 0) eta = Clock(elapsed / static_cast<double>(done) * static_cast<double>(total - done));
+    std::fprintf(stderr, "\r[%s] %zu/%zu %5.1f%%  elapsed %s  ETA %s ", bar.c_str(), done, total, 100.0 * fraction,
+                 Clock(elapsed).c_str(), eta.c_str());
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  static std::string Clock(double seconds) {
+    const long s = static_cast<long>(seconds + 0.5);
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%ld:%02ld", s / 60, s % 60);
+    return buffer;
+  }
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+// The paper's ordering (config "expect_best"): a note on stderr when it does not hold. Not an
+// error: experiments_regression_test is the check.
+void ReportExpectation(const slt::ExperimentConfig& config, const std::vector<slt::TrialResult>& trials) {
+  const slt::RegressionReport report = slt::CheckExpectedBest(config, slt::SummarizeTrials(config, trials));
+  for (const std::string& f : report.failures) std::fprintf(stderr, "run_experiment: note: %s\n", f.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace slt;
+  CLI::App app{"Run an experiment: every (method, sweep point, trial) of a config; write raw rows, summaries, plots."};
+  std::string config_arg, out_dir, shard_text;
+  int threads = 0, trials = 0;
+  std::vector<std::string> merge_dirs;
+  bool no_plots = false, quiet = false;
+  app.add_option("config", config_arg, "Experiment config: a path or a name in experiments/configs/");
+  app.add_option("--out,-o", out_dir, "Output directory (default results/<name>)");
+  app.add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 4096));
+  app.add_option("--trials", trials, "Override the config's number of trials")->check(CLI::Range(1, 1000000));
+  app.add_option("--shard", shard_text, "Run only the jobs with index % n == i (i/n); merge with --merge");
+  app.add_option("--merge", merge_dirs, "Combine these shard output directories into one result");
+  app.add_flag("--no-plots", no_plots, "Do not draw the PNG plots");
+  app.add_flag("--quiet,-q", quiet, "No progress bar, no final message");
+  Shard shard;
+  try {
+    app.parse(argc, argv);
+    if (merge_dirs.empty() && config_arg.empty()) throw CLI::ValidationError("config", "a CONFIG or --merge DIR... is required");
+    if (!merge_dirs.empty() && !config_arg.empty()) {
+      throw CLI::ValidationError("--merge", "takes the config from the shard directories: give no CONFIG");
+    }
+    if (!merge_dirs.empty() && (!shard_text.empty() || trials > 0)) {
+      throw CLI::ValidationError("--merge", "cannot be combined with --shard or --trials");
+    }
+    if (!shard_text.empty()) {
+      try {
+        shard = ParseShard(shard_text);
+      } catch (const std::invalid_argument& e) {
+        throw CLI::ValidationError(e.what());
+      }
+    }
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "run_experiment: error: %s (see --help)\n", e.what());
+    return 2;
+  }
+
+  DriverOptions options;
+  options.command_line.assign(argv, argv + argc);
+  options.run.threads = threads;
+  options.run.shard = shard;
+  ProgressBar bar;
+  if (!quiet && ::isatty(STDERR_FILENO)) options.run.on_progress = [&bar](size_t done, size_t total) { bar.Update(done, total); };
+
+  try {
+    std::string summary;
+    if (!merge_dirs.empty()) {
+      const std::string first_config = (std::filesystem::path(merge_dirs[0]) / "config.resolved.json").string();
+      const std::string name = ExperimentConfigFromJson(ReadJsonFile(first_config), first_config).name;
+      options.out_dir = out_dir.empty() ? DefaultOutputDir(name) : out_dir;
+      const MergedRun merged = MergeAndWrite(merge_dirs, options);
+      ReportExpectation(merged.config, merged.trials);
+      summary = "merged " + std::to_string(merge_dirs.size()) + " directories, " + std::to_string(merged.trials.size()) + " trials";
+    } else {
+      options.config_file = FindConfigFile(config_arg);
+      nlohmann::json document = ReadJsonFile(options.config_file);
+      if (trials > 0) {
+        if (!document.is_object()) throw ConfigError(options.config_file + ": top level: expected a JSON object");
+        document["trials"] = trials;
+      }
+      const ExperimentConfig config = ExperimentConfigFromJson(document, options.config_file);
+      if (out_dir.empty()) {
+        out_dir = DefaultOutputDir(config.name);
+        if (!shard.IsWhole()) {
+          // Under raw/ (not committed); merge with --merge results/<name>/raw/shards/*.
+          out_dir += "/raw/shards/" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count);
+        }
+      }
+      options.out_dir = out_dir;
+      const ExperimentRun run = RunAndWrite(config, options);
+      if (shard.IsWhole()) ReportExpectation(config, run.trials);
+      char buffer[160];
+      std::snprintf(buffer, sizeof(buffer), "%zu of %zu trials in %.1f s on %d threads", run.trials.size(),
+                    run.jobs_total, run.wall_time_s, run.threads);
+      summary = buffer;
+    }
+    if (!no_plots && shard.IsWhole()) RunPlotScript(options.out_dir, quiet);
+    if (!quiet) std::printf("run_experiment: %s: %s\n", options.out_dir.c_str(), summary.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "run_experiment: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,302 @@
+#include "methods/yu_point_ekf/point_transfer_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/line2d.h"
+#include "geometry/se3.h"
+#include "geometry/trifocal.h"
+
+namespace slt {
+namespace {
+
+bool ById(const LineObservation& a, const LineObservation& b) { return a.id < b.id; }
+
+// Pixel projection of a point given in the camera's frame, with d pixel / d point.
+inline Eigen::Vector2d ProjectToPixel(const PinholeCamera& camera, const Eigen::Vector3d& p,
+                                      Eigen::Matrix<double, 2, 3>* d_point) {
+  const double iz = 1.0 / p.z();
+  const double x = p.x() * iz, y = p.y() * iz;
+  *d_point << camera.fx * iz, 0.0, -camera.fx * x * iz,  //
+      0.0, camera.fy * iz, -camera.fy * y * iz;
+  return {camera.fx * x + camera.cx, camera.fy * y + camera.cy};
+}
+
+}  // namespace
+
+void PointTransferOptions::Check(const std::string& where, const std::string& path) const {
+  auto fail = [&](const std::string& key, const std::string& why) { ThrowOptionError(where, path, key, why); };
+  if (noise != "propagated" && noise != "fixed") fail("noise", "must be \"propagated\" or \"fixed\"");
+  if (!(endpoint_sigma_px > 0.0)) fail("endpoint_sigma_px", "must be > 0");
+  if (!(covariance_floor_px > 0.0)) fail("covariance_floor_px", "must be > 0");
+  if (!(fixed_sigma_px > 0.0)) fail("fixed_sigma_px", "must be > 0");
+  if (!(min_depth_m > 0.0)) fail("min_depth_m", "must be > 0");
+  if (!(min_ray_plane_angle_deg >= 0.0 && min_ray_plane_angle_deg < 90.0)) {
+    fail("min_ray_plane_angle_deg", "must be in [0, 90)");
+  }
+  if (endpoint_pairing != "geometric" && endpoint_pairing != "given") {
+    fail("endpoint_pairing", "must be \"geometric\" or \"given\"");
+  }
+  if (!(pairing_ambiguity_px >= 0.0)) fail("pairing_ambiguity_px", "must be >= 0");
+  if (!(min_segment_length_px >= 0.0)) fail("min_segment_length_px", "must be >= 0");
+}
+
+void ReadPointTransferOptions(JsonReader& r, PointTransferOptions* o) {
+  r.Get("noise", &o->noise)
+      .Get("endpoint_sigma_px", &o->endpoint_sigma_px)
+      .Get("covariance_floor_px", &o->covariance_floor_px)
+      .Get("fixed_sigma_px", &o->fixed_sigma_px)
+      .Get("min_depth_m", &o->min_depth_m)
+      .Get("min_ray_plane_angle_deg", &o->min_ray_plane_angle_deg)
+      .Get("endpoint_pairing", &o->endpoint_pairing)
+      .Get("pairing_ambiguity_px", &o->pairing_ambiguity_px)
+      .Get("min_segment_length_px", &o->min_segment_length_px);
+  o->Check(r.where(), r.path());
+}
+
+nlohmann::json PointTransferOptionsToJson(const PointTransferOptions& o) {
+  return {{"noise", o.noise},
+          {"endpoint_sigma_px", o.endpoint_sigma_px},
+          {"covariance_floor_px", o.covariance_floor_px},
+          {"fixed_sigma_px", o.fixed_sigma_px},
+          {"min_depth_m", o.min_depth_m},
+          {"min_ray_plane_angle_deg", o.min_ray_plane_angle_deg},
+          {"endpoint_pairing", o.endpoint_pairing},
+          {"pairing_ambiguity_px", o.pairing_ambiguity_px},
+          {"min_segment_length_px", o.min_segment_length_px}};
+}
+
+// ---------------------------------------------------------------------------------------------
+// StereoPointGeometry
+
+StereoPointGeometry::StereoPointGeometry(const StereoRig& rig) {
+  const PinholeCamera& l = rig.left;
+  const PinholeCamera& r = rig.right;
+  left_k_inverse_ << 1.0 / l.fx, 0.0, -l.cx / l.fx,  //
+      0.0, 1.0 / l.fy, -l.cy / l.fy,                 //
+      0.0, 0.0, 1.0;
+  right_kt_ << r.fx, 0.0, 0.0,  //
+      0.0, r.fy, 0.0,           //
+      r.cx, r.cy, 1.0;
+  const Rigid3d& e = rig.right_from_left;
+  // Essential matrix [t]_x R: x'_n^T E x_n = 0; then F = K'^-T E K^-1.
+  const Eigen::Matrix3d essential = Skew(e.translation) * e.rotation;
+  fundamental_ = PixelFromNormalizedLineMatrix(r) * essential * left_k_inverse_;
+  // A line l'_n of the right camera back-projects to the plane [R^T l'_n; t . l'_n] in the left
+  // camera's frame (pi = E^T l', E as a 3x4 camera matrix).
+  Eigen::Matrix<double, 4, 3> plane_from_normalized_line;
+  plane_from_normalized_line.topRows<3>() = e.rotation.transpose();
+  plane_from_normalized_line.row(3) = e.translation.transpose();
+  plane_from_pixel_line_ = plane_from_normalized_line * right_kt_;
+}
+
+double StereoPointGeometry::EpipolarDistance(const Eigen::Vector2d& left, const Eigen::Vector2d& right) const {
+  const Eigen::Vector3d line = fundamental_ * Homogeneous(left);
+  const double norm = line.head<2>().norm();
+  if (!(norm > 0.0)) return std::numeric_limits<double>::infinity();  // left point at the epipole
+  return std::abs(line.dot(Homogeneous(right))) / norm;
+}
+
+Eigen::Vector3d StereoPointGeometry::TransferLine(const Eigen::Vector2d& left, const Eigen::Vector2d& right) const {
+  return right_kt_ * PerpendicularLineThroughPoint(fundamental_ * Homogeneous(left), right);
+}
+
+void StereoPointGeometry::Point(const Eigen::Vector2d& left, const Eigen::Vector2d& right, bool with_jacobian,
+                                ReferencePoint* out) const {
+  const Eigen::Vector3d epipolar = fundamental_ * Homogeneous(left);  // in I'_1, pixels
+  const Eigen::Vector3d line = PerpendicularLineThroughPoint(epipolar, right);
+  const Eigen::Vector4d plane = plane_from_pixel_line_ * line;
+  const Eigen::Vector3d ray = left_k_inverse_ * Homogeneous(left);  // z = 1
+  // IntersectRayWithPlane(ray, plane) = [pi_4 ray; -n . ray], made Euclidean.
+  const Eigen::Vector3d n = plane.head<3>();
+  const double s = -n.dot(ray);
+  const double inv_s = 1.0 / s;
+  const double scale = plane(3) * inv_s;
+  out->point = scale * ray;
+  out->depth = scale;
+  out->ray_plane_sine = std::abs(s) / (n.norm() * ray.norm());
+  if (!with_jacobian) return;
+  // X = (pi_4 / s) ray with s = -n . ray:
+  //   dX/d ray = (pi_4 / s) I + (pi_4 / s^2) ray n^T,   dX/d pi = [(pi_4 / s^2) ray ray^T, ray / s].
+  Eigen::Matrix3d d_ray = scale * Eigen::Matrix3d::Identity();
+  d_ray.noalias() += (scale * inv_s) * ray * n.transpose();
+  Eigen::Matrix<double, 3, 4> d_plane;
+  d_plane.leftCols<3>().noalias() = (scale * inv_s) * ray * ray.transpose();
+  d_plane.col(3) = inv_s * ray;
+  const Eigen::Matrix<double, 3, 3> d_line = d_plane.lazyProduct(plane_from_pixel_line_);
+  // l' = (-b, a, b u' - a v') for the epipolar line (a, b, c) and x' = (u', v').
+  Eigen::Matrix3d line_d_epipolar;
+  line_d_epipolar << 0.0, -1.0, 0.0,  //
+      1.0, 0.0, 0.0,                  //
+      -right.y(), right.x(), 0.0;
+  Eigen::Matrix<double, 3, 2> line_d_right;
+  line_d_right << 0.0, 0.0, 0.0, 0.0, epipolar.y(), -epipolar.x();
+  // Left pixel: through the ray and through the epipolar line F x.
+  out->point_d_pixels.leftCols<2>().noalias() =
+      d_ray.lazyProduct(left_k_inverse_.leftCols<2>()) +
+      d_line.lazyProduct(line_d_epipolar).lazyProduct(fundamental_.leftCols<2>());
+  out->point_d_pixels.rightCols<2>().noalias() = d_line.lazyProduct(line_d_right);
+}
+
+bool StereoEndpointsSwapped(const StereoPointGeometry& geometry, const Segment2d& left, const Segment2d& right,
+                            double ambiguity_px) {
+  const Eigen::Vector2d a = left.head<2>(), b = left.tail<2>();
+  const Eigen::Vector2d a2 = right.head<2>(), b2 = right.tail<2>();
+  const double kept = geometry.EpipolarDistance(a, a2) + geometry.EpipolarDistance(b, b2);
+  const double swapped = geometry.EpipolarDistance(a, b2) + geometry.EpipolarDistance(b, a2);
+  if (std::abs(kept - swapped) >= ambiguity_px) return swapped < kept;
+  // Along the epipolar lines the distances cannot tell: keep the directions agreeing.
+  return (b2 - a2).dot(b - a) < 0.0;
+}
+
+bool TemporalEndpointsSwapped(const Segment2d& reference, const Segment2d& current) {
+  return (current.tail<2>() - current.head<2>()).dot(reference.tail<2>() - reference.head<2>()) < 0.0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// PointTransferModel
+
+PointTransferModel::PointTransferModel(const PointTransferOptions& options) : options_(options) {
+  options_.Check();
+  propagated_noise_ = options_.noise == "propagated";
+  geometric_pairing_ = options_.endpoint_pairing == "geometric";
+  min_ray_plane_sine_ = std::sin(options_.min_ray_plane_angle_deg * M_PI / 180.0);
+}
+
+void PointTransferModel::Reset(const StereoRig& rig) {
+  rig_ = rig;
+  geometry_ = StereoPointGeometry(rig);
+  reference_.clear();
+  reference_points_.clear();
+  reference_usable_.clear();
+  current_.clear();
+  matches_.clear();
+  current_stereo_ = 0;
+}
+
+bool PointTransferModel::Usable(const ReferencePoint& point) const {
+  return point.point.allFinite() && point.depth >= options_.min_depth_m &&
+         point.ray_plane_sine >= min_ray_plane_sine_;
+}
+
+void PointTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLinePoints>* out) {
+  left_sorted_.assign(frame.left.begin(), frame.left.end());
+  right_sorted_.assign(frame.right.begin(), frame.right.end());
+  std::sort(left_sorted_.begin(), left_sorted_.end(), ById);
+  std::sort(right_sorted_.begin(), right_sorted_.end(), ById);
+  const double min_length = std::max(options_.min_segment_length_px, 1e-9);
+  const auto usable = [&](const Segment2d& s) {
+    return s.allFinite() && (s.tail<2>() - s.head<2>()).norm() >= min_length;
+  };
+  out->clear();
+  auto l = left_sorted_.begin();
+  auto r = right_sorted_.begin();
+  while (l != left_sorted_.end() && r != right_sorted_.end()) {
+    if (l->id < r->id) {
+      ++l;
+    } else if (r->id < l->id) {
+      ++r;
+    } else {
+      if (usable(l->segment) && usable(r->segment)) {
+        StereoLinePoints line;
+        line.id = l->id;
+        line.left_segment = l->segment;
+        line.left = {l->segment.head<2>(), l->segment.tail<2>()};
+        const bool swap =
+            geometric_pairing_ && StereoEndpointsSwapped(geometry_, l->segment, r->segment, options_.pairing_ambiguity_px);
+        line.right = {r->segment.segment<2>(swap ? 2 : 0), r->segment.segment<2>(swap ? 0 : 2)};
+        out->push_back(line);
+      }
+      ++l;
+      ++r;
+    }
+  }
+}
+
+int PointTransferModel::SetReference(const StereoFrame& frame) {
+  CollectStereoLines(frame, &reference_);
+  reference_points_.resize(2 * reference_.size());
+  reference_usable_.resize(2 * reference_.size());
+  int usable = 0;
+  for (size_t i = 0; i < reference_.size(); ++i) {
+    for (int k = 0; k < 2; ++k) {
+      ReferencePoint& point = reference_points_[2 * i + k];
+      geometry_.Point(reference_[i].left[k], reference_[i].right[k], true, &point);
+      reference_usable_[2 * i + k] = Usable(point) && point.point_d_pixels.allFinite();
+      usable += reference_usable_[2 * i + k];
+    }
+  }
+  matches_.clear();
+  return usable;
+}
+
+int PointTransferModel::SetCurrent(const StereoFrame& frame) {
+  CollectStereoLines(frame, &current_);
+  current_stereo_ = 0;
+  ReferencePoint point;
+  for (const StereoLinePoints& line : current_) {
+    for (int k = 0; k < 2; ++k) {
+      geometry_.Point(line.left[k], line.right[k], false, &point);
+      current_stereo_ += Usable(point);
+    }
+  }
+  matches_.clear();
+  size_t i = 0, j = 0;
+  while (i < reference_.size() && j < current_.size()) {
+    if (reference_[i].id < current_[j].id) {
+      ++i;
+    } else if (current_[j].id < reference_[i].id) {
+      ++j;
+    } else {
+      const bool swap =
+          geometric_pairing_ && TemporalEndpointsSwapped(reference_[i].left_segment, current_[j].left_segment);
+      for (int k = 0; k < 2; ++k) {
+        const int point = static_cast<int>(2 * i) + k;
+        if (!reference_usable_[point]) continue;
+        matches_.push_back({reference_[i].id, k, point, static_cast<int>(j), swap ? 1 - k : k});
+      }
+      ++i;
+      ++j;
+    }
+  }
+  return static_cast<int>(matches_.size());
+}
+
+bool PointTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
+                                  FeatureBlock* block) const {
+  const Match& match = matches_[index];
+  const ReferencePoint& ref = reference_points_[match.reference_point];
+  const StereoLinePoints& cur = current_[match.current_line];
+  const Rigid3d& e = rig_.right_from_left;
+  // X in the current left and right cameras: the plane form of the two point transfers.
+  const Eigen::Vector3d x_left = cam_from_ref * ref.point;
+  const Eigen::Vector3d x_right = e * x_left;
+  if (!(x_left.z() >= options_.min_depth_m && x_right.z() >= options_.min_depth_m)) return false;
+  Eigen::Matrix<double, 2, 3> d_left, d_right;
+  block->residual.head<2>() = cur.left[match.current_endpoint] - ProjectToPixel(rig_.left, x_left, &d_left);
+  block->residual.tail<2>() = cur.right[match.current_endpoint] - ProjectToPixel(rig_.right, x_right, &d_right);
+  // d X_c / d d = [I, -[X_c]_x]; the right camera adds R_E in front (E Exp(d) M = Exp(Ad_E d) E M).
+  const Eigen::Matrix3d skew = Skew(x_left);
+  const Eigen::Matrix<double, 2, 3> d_right_rotated = d_right.lazyProduct(e.rotation);
+  block->jacobian.block<2, 3>(0, 0) = -d_left;
+  block->jacobian.block<2, 3>(0, 3).noalias() = d_left.lazyProduct(skew);
+  block->jacobian.block<2, 3>(2, 0) = -d_right_rotated;
+  block->jacobian.block<2, 3>(2, 3).noalias() = d_right_rotated.lazyProduct(skew);
+  if (!with_covariance) return true;
+  if (!propagated_noise_) {
+    block->covariance = Eigen::Matrix4d::Identity() * (options_.fixed_sigma_px * options_.fixed_sigma_px);
+    return true;
+  }
+  // N = [N_ref | I_4]: the reference pixels through X, the current pixels directly.
+  const Eigen::Matrix<double, 3, 4> x_d_pixels = cam_from_ref.rotation.lazyProduct(ref.point_d_pixels);
+  Eigen::Matrix4d n_ref;
+  n_ref.topRows<2>().noalias() = -d_left.lazyProduct(x_d_pixels);
+  n_ref.bottomRows<2>().noalias() = -d_right_rotated.lazyProduct(x_d_pixels);
+  const double var = options_.endpoint_sigma_px * options_.endpoint_sigma_px;
+  block->covariance.noalias() = var * n_ref.lazyProduct(n_ref.transpose());
+  block->covariance.diagonal().array() += var + options_.covariance_floor_px * options_.covariance_floor_px;
+  return true;
+}
+
+}  // namespace slt
