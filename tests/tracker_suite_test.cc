@@ -78,6 +78,30 @@ TEST_P(TrackerSuite, FiniteOutputOnEveryFrameOfAHostileSequence) {
   }
 }
 
+TEST_P(TrackerSuite, LosingEveryFeatureHoldsThePose) {
+  // The lines vanish for the last 30 frames (the camera looks at a blank wall): the tracker says
+  // it is lost and does not extrapolate its last velocity for ever. The paper protocol moves up
+  // to 0.010 m and 1.2 deg per frame, so 30 frames of coasting would carry it up to 0.3 m.
+  SimulatedSequence sim = Simulated({{"frames", 60}, {"noise", {{"endpoint_px", 1.0}}}});
+  for (int k = 30; k < 60; ++k) {
+    sim.sequence.frames[k].left.clear();
+    sim.sequence.frames[k].right.clear();
+  }
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  const Rigid3d& last_seen = run.outputs[29].cam_from_world;
+  for (int k = 30; k < 60; ++k) {
+    const TrackerOutput& o = run.outputs[k];
+    ASSERT_TRUE(IsFinite(o.cam_from_world)) << "frame " << k;
+    if (!info().plumbing_only) {
+      EXPECT_EQ(o.status, TrackingStatus::kLost) << "frame " << k;
+    }
+    const Rigid3d moved = o.cam_from_world * last_seen.Inverse();
+    EXPECT_LT(moved.translation.norm(), 0.03) << "frame " << k;
+    EXPECT_LT(Eigen::AngleAxisd(moved.rotation).angle(), 3.0 * 1.2 * M_PI / 180.0) << "frame " << k;
+  }
+}
+
 TEST_P(TrackerSuite, DeterministicAcrossResets) {
   const SimulatedSequence sim = Simulated({{"frames", 30}, {"outliers", {{"rate", 0.1}}}});
   auto tracker = Make();

@@ -37,6 +37,16 @@ Vector6d SpdSolver6::Solve(const Vector6d& b) const {
   return y;
 }
 
+double SpdSolver6::SquaredNorm(const Vector6d& v) const {
+  double sum = 0.0;
+  for (int j = 0; j < 6; ++j) {  // (L^T v)_j = sum_{i >= j} L(i, j) v(i)
+    double s = 0.0;
+    for (int i = j; i < 6; ++i) s += lower_(i, j) * v(i);
+    sum += s * s;
+  }
+  return sum;
+}
+
 Matrix6d SpdSolver6::Inverse() const {
   // M = L^-1 (lower triangular), then a^-1 = M^T M.
   Matrix6d m = Matrix6d::Zero();

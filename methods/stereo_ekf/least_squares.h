@@ -71,6 +71,8 @@ class SpdSolver6 {
   bool Compute(const Matrix6d& a);
   Vector6d Solve(const Vector6d& b) const;
   Matrix6d Inverse() const;
+  // v^T a v = |L^T v|^2 (the squared Mahalanobis length of v when a is an information matrix).
+  double SquaredNorm(const Vector6d& v) const;
   // The lower-triangular factor L (a = L L^T); only the lower triangle is meaningful.
   Matrix6d lower() const { return lower_.triangularView<Eigen::Lower>(); }
 

@@ -76,12 +76,17 @@ void PoseVelocityFilter::Correct(const Vector6d& delta, const Matrix6d& posterio
   cam_from_ref_ = ExpSE3(delta) * cam_from_ref_;
 }
 
-void PoseVelocityFilter::Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance) {
+void PoseVelocityFilter::Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance,
+                                bool previous_pose_trusted) {
   cam_from_ref_ = cam_from_ref;
-  velocity_ = LogSE3(cam_from_ref * previous_cam_from_ref_.Inverse());
+  velocity_ = previous_pose_trusted ? LogSE3(cam_from_ref * previous_cam_from_ref_.Inverse()) : Vector6d::Zero();
   covariance_.setZero();
   covariance_.topLeftCorner<6, 6>() = pose_covariance;
   covariance_.bottomRightCorner<6, 6>() = InitialVelocityCovariance();
+}
+
+void PoseVelocityFilter::DampVelocity(double factor) {
+  velocity_ *= factor;
 }
 
 void PoseVelocityFilter::Rebase() {

@@ -89,6 +89,8 @@ void StereoEkfOptions::Check(const std::string& where, const std::string& path) 
   if (!(max_normalized_cost > 0.0)) fail("max_normalized_cost", "must be > 0");
   if (ransac_max_iterations < 1) fail("ransac_max_iterations", "must be >= 1");
   if (!(ransac_confidence > 0.0 && ransac_confidence < 1.0)) fail("ransac_confidence", "must be in (0, 1)");
+  if (min_consensus < 2) fail("min_consensus", "must be >= 2");
+  if (!(lost_velocity_decay >= 0.0 && lost_velocity_decay <= 1.0)) fail("lost_velocity_decay", "must be in [0, 1]");
   if (count_features != "measurable" && count_features != "gated") {
     fail("count_features", "must be \"measurable\" or \"gated\"");
   }
@@ -127,6 +129,8 @@ void ReadStereoEkfOptions(JsonReader& r, StereoEkfOptions* o) {
       .Get("ransac_max_iterations", &o->ransac_max_iterations)
       .Get("ransac_confidence", &o->ransac_confidence)
       .Get("seed", &o->seed)
+      .Get("min_consensus", &o->min_consensus)
+      .Get("lost_velocity_decay", &o->lost_velocity_decay)
       .Get("min_features", &o->min_features)
       .Get("min_feature_fraction", &o->min_feature_fraction)
       .Get("count_features", &o->count_features);
@@ -155,6 +159,8 @@ nlohmann::json StereoEkfOptionsToJson(const StereoEkfOptions& o) {
           {"ransac_max_iterations", o.ransac_max_iterations},
           {"ransac_confidence", o.ransac_confidence},
           {"seed", o.seed},
+          {"min_consensus", o.min_consensus},
+          {"lost_velocity_decay", o.lost_velocity_decay},
           {"min_features", o.min_features},
           {"min_feature_fraction", o.min_feature_fraction},
           {"count_features", o.count_features}};

@@ -30,10 +30,10 @@ struct StereoEkfOptions {
   double initial_velocity_sigma_rad = 0.035;
 
   // Update: 1 = the paper's single EKF update (eq. 19); more = iterated EKF (Gauss-Newton on
-  // the MAP cost), stopping early when a step (twist norm) is below iteration_tolerance times
-  // the measurement-noise scale s (see adaptive_noise).
+  // the MAP cost), stopping early when a step is shorter than iteration_tolerance posterior
+  // standard deviations (its Mahalanobis length in the posterior information H + P^-1).
   int max_iterations = 2;
-  double iteration_tolerance = 2e-2;
+  double iteration_tolerance = 0.1;
 
   // Validation gate (eq. 20) r^T S^-1 r < g per feature. g is the chi-square quantile of
   // gate_probability with 4 degrees of freedom, unless gate_threshold > 0 gives g directly
@@ -65,6 +65,13 @@ struct StereoEkfOptions {
   int ransac_max_iterations = 200;
   double ransac_confidence = 0.999;
   std::uint64_t seed = 1;
+  // A RANSAC solve counts only when at least min_consensus features agree (fewer when fewer are
+  // measurable): any two features agree with the pose fitted to them, so a consensus of two out
+  // of many confirms nothing.
+  int min_consensus = 3;
+  // On every frame without a usable update the velocity is pulled toward zero by this factor
+  // (PoseVelocityFilter::DampVelocity); 1 = coast at constant velocity for ever.
+  double lost_velocity_decay = 0.5;
 
   // Feature replacement (Sec. 3.3): when fewer than min_features (the paper's k_c) features of
   // the reference remain, or fewer than min_feature_fraction of those the reference started

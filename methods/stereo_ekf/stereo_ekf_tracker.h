@@ -45,6 +45,8 @@ class StereoEkfTracker : public PoseTracker {
     int robust_solves = 0;    // RANSAC runs
     int reseeds = 0;          // filter re-seeded from a RANSAC solve
     int lost_frames = 0;
+    int updates = 0;            // measurement updates
+    int update_iterations = 0;  // Gauss-Newton iterations over all updates (>= updates)
   };
   double noise_scale() const { return std::sqrt(noise_scale_sq_); }
   const Counters& counters() const { return counters_; }

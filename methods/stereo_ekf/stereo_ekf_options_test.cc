@@ -1,0 +1,82 @@
+#include "methods/stereo_ekf/stereo_ekf_options.h"
+
+#include <gtest/gtest.h>
+
+namespace slt {
+namespace {
+
+TEST(ChiSquareQuantile, MatchesTabulatedValues) {
+  // Reference values: scipy.stats.chi2.ppf(p, dof).
+  EXPECT_NEAR(ChiSquareQuantile(0.999, 4), 18.466827, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.9999, 4), 23.512742, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.99, 4), 13.276704, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.5, 4), 3.356694, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.95, 6), 12.591587, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.999, 6), 22.457744, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.5, 1), 0.454936, 1e-5);
+  EXPECT_NEAR(ChiSquareQuantile(0.99, 2), 9.210340, 1e-5);
+}
+
+TEST(StereoEkfOptions, GateThresholdComesFromTheProbabilityUnlessGiven) {
+  StereoEkfOptions o;
+  o.gate_probability = 0.999;
+  EXPECT_NEAR(o.GateThreshold(), 18.466827, 1e-5);
+  o.gate_threshold = 0.2;  // the paper's g, taken as is
+  EXPECT_DOUBLE_EQ(o.GateThreshold(), 0.2);
+}
+
+TEST(StereoEkfOptions, JsonRoundTripKeepsEveryField) {
+  StereoEkfOptions o;
+  o.state = "velocity";
+  o.max_iterations = 4;
+  o.iteration_tolerance = 0.05;
+  o.gate_probability = 0.99;
+  o.count_features = "gated";
+  o.seed = 42;
+  const nlohmann::json j = StereoEkfOptionsToJson(o);
+  StereoEkfOptions back;
+  JsonReader reader(j, "test");
+  ReadStereoEkfOptions(reader, &back);
+  reader.RejectUnknownKeys();  // every written key is a known one
+  EXPECT_EQ(StereoEkfOptionsToJson(back), j);
+}
+
+TEST(StereoEkfOptions, CheckNamesTheBadKey) {
+  StereoEkfOptions o;
+  o.max_iterations = 0;
+  try {
+    o.Check("tracker.json", "filter");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("tracker.json: key 'filter.max_iterations'"), std::string::npos) << e.what();
+  }
+  StereoEkfOptions bad_state;
+  bad_state.state = "pose";
+  EXPECT_THROW(bad_state.Check(), ConfigError);
+  StereoEkfOptions bad_tolerance;
+  bad_tolerance.iteration_tolerance = -1.0;
+  EXPECT_THROW(bad_tolerance.Check(), ConfigError);
+  StereoEkfOptions too_few;
+  too_few.min_features = 1;
+  EXPECT_THROW(too_few.Check(), ConfigError);
+}
+
+TEST(StereoEkfOptions, WrongJsonTypeIsAnError) {
+  StereoEkfOptions o;
+  JsonReader reader(nlohmann::json{{"max_iterations", "three"}}, "tracker.json", "filter");
+  EXPECT_THROW(ReadStereoEkfOptions(reader, &o), ConfigError);
+}
+
+TEST(StereoEkfOptions, PaperPresetIsThePapersFilter) {
+  StereoEkfOptions o;
+  ApplyPaperPreset(&o);
+  EXPECT_EQ(o.state, "velocity");
+  EXPECT_EQ(o.max_iterations, 1);
+  EXPECT_FALSE(o.robust);
+  EXPECT_FALSE(o.adaptive_noise);
+  EXPECT_EQ(o.count_features, "gated");
+  EXPECT_NO_THROW(o.Check());
+}
+
+}  // namespace
+}  // namespace slt
