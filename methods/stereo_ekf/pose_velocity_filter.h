@@ -36,7 +36,7 @@ class PoseVelocityFilter {
   // the previous pose when that pose is trusted, on zero otherwise (a previous pose from a
   // filter that had already gone wrong would turn the whole correction into a velocity and
   // carry the next predictions off by as much again).
-  void Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance, bool previous_pose_trusted = true);
+  void Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance, bool previous_pose_trusted);
   // While nothing is measured: xi <- f xi, so that a lost tracker coasts briefly and then holds
   // its pose instead of extrapolating, frame after frame, a velocity nobody confirms (a wrong
   // update just before the loss made such runs drift by metres). The covariance is left as it

@@ -143,11 +143,11 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     // Re-linearising moves the solution by O(|step|^2): stop once the step is small against the
     // posterior uncertainty, |step|_A = sqrt(step^T A step) with A = H + P^-1 the posterior
     // information (in standard deviations, so mixed rad/m units do not matter and noise-free data,
-    // whose information is large, still iterate to exactness). A first step from a good
-    // prediction is about one standard deviation, so the default (2) re-linearises once per
-    // frame; that second pass, re-gating at the re-linearised solution, is what the outlier
-    // sweeps gain from (a second-order stopping test that skipped it doubled the worst error at
-    // 30 % outliers).
+    // whose information is large, still iterate to exactness). In the posterior metric a first
+    // step from the prediction is long (its expected squared length grows with the number of
+    // features), so the default (2) re-linearises once per frame; that second pass, re-gating at
+    // the re-linearised solution, is what the outlier sweeps gain from (a second-order stopping
+    // test that skipped it doubled the worst error at 30 % outliers).
     const Vector6d step = delta - delta_k;
     if (solver.SquaredNorm(step) < options_.iteration_tolerance * options_.iteration_tolerance) break;
   }
@@ -293,7 +293,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
   previous_inliers_ = used;
   if (!filter_.cam_from_ref().rotation.allFinite() || !filter_.cam_from_ref().translation.allFinite()) {
     // Defensive: never hand out a non-finite pose. Restart from the last good pose.
-    filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4);
+    filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4, /*previous_pose_trusted=*/true);
     healthy_ = false;
     used = 0;
     out.status = TrackingStatus::kLost;
