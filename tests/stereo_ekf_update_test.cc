@@ -1,8 +1,16 @@
 // The iterated update of the shared stereo EKF (methods/stereo_ekf) does what its options say:
 // one Gauss-Newton step for the paper's EKF, up to max_iterations re-linearisations otherwise,
-// stopping once a step is shorter than iteration_tolerance posterior standard deviations.
+// stopping once a step is shorter than iteration_tolerance posterior standard deviations; and a
+// single update is the Kalman update of eq. 19.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "geometry/se3.h"
 #include "methods/stereo_ekf/stereo_ekf_tracker.h"
 #include "tests/test_support.h"
 
@@ -43,6 +51,181 @@ TEST_P(IteratedUpdate, IteratesAsConfigured) {
 
 INSTANTIATE_TEST_SUITE_P(StereoEkfTrackers, IteratedUpdate,
                          ::testing::Values("trifocal_line_ekf", "yu_point_ekf"));
+
+// A measurement model linear in the pose's logarithm: feature i measures
+//   r_i(M) = A_i (Log(M) - d_true) + n_i,   covariance R_i,
+// so that on the first frame after the start (M_pred = I, where Log(Exp(d) M_pred) = d) the
+// filter's update can be compared with the textbook formulas of eq. 19 written out here.
+class LinearFeatureModel final : public FeatureModel {
+ public:
+  LinearFeatureModel(int count, const Vector6d& d_true, std::uint64_t seed) : d_true_(d_true) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    auto random = [&](auto* m) { *m = m->unaryExpr([&](double) { return normal(rng); }); };
+    for (int i = 0; i < count; ++i) {
+      Feature f;
+      random(&f.a);
+      Eigen::Matrix4d l;
+      random(&l);
+      f.r = 1e-5 * (l * l.transpose() + Eigen::Matrix4d::Identity());  // SPD, correlated
+      Eigen::Vector4d z;
+      random(&z);
+      f.noise = f.r.llt().matrixL() * z;  // ~ N(0, R_i): every feature passes the gate
+      features_.push_back(f);
+    }
+  }
+  void Reset(const StereoRig&) override {}
+  int SetReference(const StereoFrame&) override { return NumFeatures(); }
+  int SetCurrent(const StereoFrame&) override { return NumFeatures(); }
+  int NumFeatures() const override { return static_cast<int>(features_.size()); }
+  int CurrentStereoFeatures() const override { return NumFeatures(); }
+  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance, FeatureBlock* block) const override {
+    const Feature& f = features_[index];
+    const Vector6d d = LogSE3(cam_from_ref);
+    block->residual = f.a * (d - d_true_) + (1.0 + noise_growth_ * d.squaredNorm()) * f.noise;
+    block->jacobian = f.a;  // exact at M = I without noise growth; the tests use the first update
+    if (with_covariance) block->covariance = f.r;
+    return true;
+  }
+
+  struct Feature {
+    Eigen::Matrix<double, 4, 6> a;
+    Eigen::Matrix4d r;
+    Eigen::Vector4d noise;
+  };
+  const std::vector<Feature>& features() const { return features_; }
+  void set_noise(int index, const Eigen::Vector4d& noise) { features_[index].noise = noise; }
+  // The noise is scaled by 1 + growth |Log(M)|^2: a model that is not linear after all.
+  void set_noise_growth(double growth) { noise_growth_ = growth; }
+
+ private:
+  Vector6d d_true_;
+  double noise_growth_ = 0.0;
+  std::vector<Feature> features_;
+};
+
+class FirstUpdate : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
+  StereoEkfOptions options;
+  ApplyPaperPreset(&options);  // one update, no RANSAC, no noise adaptation
+  options.state = GetParam();
+  Vector6d d_true;
+  d_true << 0.004, -0.003, 0.006, 0.01, -0.008, 0.005;  // rad, m: within the velocity prior
+  auto owned = std::make_unique<LinearFeatureModel>(5, d_true, 7);
+  const LinearFeatureModel& model = *owned;
+  StereoEkfTracker tracker(options, std::move(owned), nlohmann::json::object());
+  tracker.Reset(StereoRig());
+  tracker.Track(StereoFrame{0.0, {}, {}});
+
+  // The prior of the first update: the filter's prediction from its start.
+  PoseVelocityFilter replica;
+  replica.Reset(options);
+  replica.Predict();
+  ASSERT_TRUE(replica.cam_from_ref().translation.isZero() && replica.cam_from_ref().rotation.isIdentity());
+  const Matrix6d p = replica.PoseCovariance();
+
+  // Eq. 19 with H the stacked A_i, R block-diagonal, innovation z - h(M_pred) = -r(I).
+  const int n = model.NumFeatures();
+  Eigen::MatrixXd h(4 * n, 6), r = Eigen::MatrixXd::Zero(4 * n, 4 * n);
+  Eigen::VectorXd innovation(4 * n);
+  for (int i = 0; i < n; ++i) {
+    const auto& f = model.features()[i];
+    h.middleRows<4>(4 * i) = f.a;
+    r.block<4, 4>(4 * i, 4 * i) = f.r;
+    innovation.segment<4>(4 * i) = f.a * d_true - f.noise;
+  }
+  const Eigen::MatrixXd gain = p * h.transpose() * (h * p * h.transpose() + r).inverse();
+  const Vector6d expected_delta = gain * innovation;
+  // Joseph form: the same as P - W H P, without its cancellation.
+  const Matrix6d i_minus_wh = Matrix6d::Identity() - gain * h;
+  const Matrix6d expected_covariance = i_minus_wh * p * i_minus_wh.transpose() + gain * r * gain.transpose();
+
+  const TrackerOutput out = tracker.Track(StereoFrame{1.0 / 30.0, {}, {}});
+  EXPECT_EQ(out.status, TrackingStatus::kTracking);
+  EXPECT_EQ(out.features_used, n);
+  EXPECT_EQ(tracker.counters().update_iterations, 1);
+  const Vector6d delta = LogSE3(tracker.filter().cam_from_ref());
+  EXPECT_LT((delta - expected_delta).norm(), 1e-9 * expected_delta.norm()) << delta.transpose() << "\n"
+                                                                          << expected_delta.transpose();
+  EXPECT_LT((tracker.filter().PoseCovariance() - expected_covariance).norm(), 1e-9 * expected_covariance.norm());
+  // The update moved toward the truth (it is not the prediction).
+  EXPECT_LT((delta - d_true).norm(), 0.5 * d_true.norm());
+}
+
+// Two features with errors that no pose explains, concentrated on feature 1, whose whitened
+// squared norm is `bad_cost` (feature 0's stays below `max_good_cost`).
+std::unique_ptr<LinearFeatureModel> DisagreeingPair(const Vector6d& d_true, double bad_cost, double max_good_cost) {
+  auto model = std::make_unique<LinearFeatureModel>(2, d_true, 11);
+  Eigen::Matrix<double, 8, 6> h;
+  Eigen::Matrix<double, 8, 8> r_sqrt = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int i = 0; i < 2; ++i) {
+    const auto& f = model->features()[i];
+    const Eigen::Matrix4d l = f.r.llt().matrixL();
+    r_sqrt.block<4, 4>(4 * i, 4 * i) = l;
+    h.middleRows<4>(4 * i) = l.triangularView<Eigen::Lower>().solve(f.a);
+  }
+  // Whitened errors orthogonal to the range of the whitened Jacobian: the last two left
+  // singular vectors; of their span, the direction with the least on feature 0.
+  Eigen::JacobiSVD<Eigen::Matrix<double, 8, 6>> svd(h, Eigen::ComputeFullU);
+  const Eigen::Matrix<double, 8, 2> u = svd.matrixU().rightCols<2>();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> split(u.topRows<4>().transpose() * u.topRows<4>());
+  Eigen::Matrix<double, 8, 1> e = u * split.eigenvectors().col(0);
+  e *= std::sqrt(bad_cost) / e.bottomRows<4>().norm();
+  EXPECT_LT(e.topRows<4>().squaredNorm(), max_good_cost);
+  const Eigen::Matrix<double, 8, 1> n = r_sqrt * e;
+  model->set_noise(0, n.head<4>());
+  model->set_noise(1, n.tail<4>());
+  return model;
+}
+
+TEST(FirstUpdate, TwoFeaturesThatDisagreeLeaveThePrediction) {
+  // Both features pass the gate at the (wide) prior; the solution fitted to both leaves feature
+  // 1 outside it. One feature left cannot correct a pose, so the frame is reported lost and the
+  // prediction stands: neither a one-feature update nor a step solved with the feature just
+  // rejected -- also when the rejection comes at a later iteration (the second case: errors
+  // that grow away from the prediction, inside the gate at the first solution, outside it
+  // once re-linearised there).
+  StereoEkfOptions options;
+  ApplyPaperPreset(&options);
+  options.min_features = 2;  // two features are enough: no feature replacement here
+  options.count_features = "measurable";
+  const double g = options.GateThreshold();
+  Vector6d d_true;
+  d_true << 0.004, -0.003, 0.006, 0.01, -0.008, 0.005;
+  struct Case {
+    double bad_cost;  // at the prediction's solution
+    double growth;    // noise x (1 + growth |d|^2), |d| ~ |d_true| after the first step
+    int max_iterations;
+    TrackingStatus expected;
+  };
+  const double triple = 2.0 / d_true.squaredNorm();  // the error x3 near the truth
+  for (const Case& c : {Case{3.0 * g, 0.0, 1, TrackingStatus::kLost}, Case{3.0 * g, 0.0, 3, TrackingStatus::kLost},
+                        Case{0.5 * g, triple, 1, TrackingStatus::kTracking},
+                        Case{0.5 * g, triple, 3, TrackingStatus::kLost}}) {
+    SCOPED_TRACE(testing::Message() << "bad cost " << c.bad_cost / g << " g, growth " << c.growth << ", "
+                                    << c.max_iterations << " iterations");
+    options.max_iterations = c.max_iterations;
+    // Feature 0 stays inside the gate, also with its error tripled.
+    auto model = DisagreeingPair(d_true, c.bad_cost, c.growth > 0.0 ? g / 9.0 : g);
+    model->set_noise_growth(c.growth);
+    StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
+    tracker.Reset(StereoRig());
+    tracker.Track(StereoFrame{0.0, {}, {}});
+    const TrackerOutput out = tracker.Track(StereoFrame{1.0 / 30.0, {}, {}});
+    EXPECT_EQ(out.status, c.expected);
+    if (c.expected == TrackingStatus::kLost) {
+      EXPECT_EQ(out.features_used, 0);
+      EXPECT_EQ(tracker.counters().updates, 0);
+      EXPECT_LT(LogSE3(tracker.filter().cam_from_ref()).norm(), 1e-12);  // the prediction: M = I
+    } else {
+      EXPECT_EQ(out.features_used, 2);
+      EXPECT_EQ(tracker.counters().updates, 1);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values("velocity", "pose_velocity"));
 
 }  // namespace
 }  // namespace slt

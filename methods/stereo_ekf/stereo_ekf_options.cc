@@ -105,6 +105,7 @@ void ApplyPaperPreset(StereoEkfOptions* o) {
   o->adaptive_noise = false;
   o->min_feature_fraction = 0.0;
   o->count_features = "gated";
+  o->lost_velocity_decay = 1.0;
 }
 
 void ReadStereoEkfOptions(JsonReader& r, StereoEkfOptions* o) {

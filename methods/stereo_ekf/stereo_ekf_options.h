@@ -89,7 +89,8 @@ struct StereoEkfOptions {
 };
 
 // The paper's filter (Sec. 3.3-4): 6-D velocity state, one EKF update, no RANSAC, no noise
-// adaptation, feature replacement counting the lines that survive the gate (eq. 20).
+// adaptation, constant-velocity prediction while nothing is measured (no velocity decay),
+// feature replacement counting the lines that survive the gate (eq. 20).
 void ApplyPaperPreset(StereoEkfOptions* options);
 
 // Reads the fields present in `reader` (keeps defaults for the others).

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 namespace slt {
 namespace {
 
@@ -26,19 +28,34 @@ TEST(StereoEkfOptions, GateThresholdComesFromTheProbabilityUnlessGiven) {
 }
 
 TEST(StereoEkfOptions, JsonRoundTripKeepsEveryField) {
-  StereoEkfOptions o;
-  o.state = "velocity";
-  o.max_iterations = 4;
-  o.iteration_tolerance = 0.05;
-  o.gate_probability = 0.99;
-  o.count_features = "gated";
-  o.seed = 42;
-  const nlohmann::json j = StereoEkfOptionsToJson(o);
-  StereoEkfOptions back;
-  JsonReader reader(j, "test");
-  ReadStereoEkfOptions(reader, &back);
-  reader.RejectUnknownKeys();  // every written key is a known one
-  EXPECT_EQ(StereoEkfOptionsToJson(back), j);
+  // Every field changed from its default to another valid value: a field that ReadStereoEkfOptions
+  // or StereoEkfOptionsToJson forgets comes back at its default and breaks the equality.
+  const nlohmann::json defaults = StereoEkfOptionsToJson(StereoEkfOptions());
+  nlohmann::json changed = defaults;
+  for (auto& [key, value] : changed.items()) {
+    if (value.is_boolean()) {
+      value = !value.get<bool>();
+    } else if (value.is_number_unsigned()) {
+      value = value.get<std::uint64_t>() + 41;
+    } else if (value.is_number_integer()) {
+      value = value.get<int>() + 1;
+    } else if (value.is_number_float()) {
+      const double v = value.get<double>();
+      // Fractions and probabilities stay in (0, 1); scales grow.
+      value = v > 0.0 && v < 1.0 ? 0.5 * v : (v == 0.0 ? 0.5 : 1.5 * v);
+    }
+  }
+  changed["state"] = "velocity";
+  changed["integration"] = "first_order";
+  changed["count_features"] = "gated";
+  ASSERT_EQ(changed.size(), 26u) << "a field was added: extend this test if it needs a special value";
+  for (const auto& [key, value] : changed.items()) EXPECT_NE(value, defaults[key]) << key;
+
+  StereoEkfOptions read;
+  JsonReader reader(changed, "test");
+  ReadStereoEkfOptions(reader, &read);  // also checks the values
+  reader.RejectUnknownKeys();           // every written key is a known one
+  EXPECT_EQ(StereoEkfOptionsToJson(read), changed);
 }
 
 TEST(StereoEkfOptions, CheckNamesTheBadKey) {
@@ -75,6 +92,7 @@ TEST(StereoEkfOptions, PaperPresetIsThePapersFilter) {
   EXPECT_FALSE(o.robust);
   EXPECT_FALSE(o.adaptive_noise);
   EXPECT_EQ(o.count_features, "gated");
+  EXPECT_EQ(o.lost_velocity_decay, 1.0);  // the paper keeps predicting at constant velocity
   EXPECT_NO_THROW(o.Check());
 }
 

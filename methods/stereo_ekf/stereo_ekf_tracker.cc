@@ -129,10 +129,14 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     // linearised posterior cost exceeds it is an outlier the prior let through; drop it and
     // re-solve on the same linearisation (no new evaluation).
     if (RemovePosteriorOutliers(next - delta_k)) {
+      // Of two features that disagree, neither can be trusted, and one feature cannot correct
+      // a pose: no update this frame (the caller reports the frame lost), rather than keep a
+      // step solved with the feature just rejected.
+      if (inliers_.size() < 2) return std::numeric_limits<double>::infinity();
       ne = NormalEquations();
       for (int i : inliers_) ne.AddWhitened(features_[i].whitened_residual, features_[i].whitened_jacobian);
       const Matrix6d h = ne.FullHessian();
-      if (inliers_.size() < 2 || !solver.Compute(h + prior_information)) break;
+      if (!solver.Compute(h + prior_information)) break;
       next = solver.Solve(h * delta_k - ne.gradient);
       if (!next.allFinite()) break;
     }

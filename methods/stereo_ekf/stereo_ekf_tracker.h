@@ -58,7 +58,8 @@ class StereoEkfTracker : public PoseTracker {
   void EvaluateAtPrediction(const Rigid3d& predicted);
   // Iterated update on `inliers_`, with the filter's pose as prior mean, starting at
   // `linearization`; `blocks_at_linearization` says that features_ were evaluated there.
-  // Returns the posterior cost of the measurements (whitened, squared).
+  // Returns the posterior cost of the measurements (whitened, squared), or infinity when it
+  // made no update (nothing solvable, or fewer than two features left after re-gating).
   double IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization);
   // Drops the inliers whose linearised cost after `step` exceeds the gate; true if any.
   bool RemovePosteriorOutliers(const Vector6d& step);
