@@ -108,11 +108,14 @@ TEST(StereoLinesIo, LargeSequenceWritesAndReadsQuickly) {
   const StereoSequence read = ReadStereoLines(path);
   [[maybe_unused]] const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(read.frames.size(), 1000u);
-  ExpectSameObservations(read.frames[999].left, written.frames[999].left);
-#ifdef NDEBUG
+  for (size_t k = 0; k < read.frames.size(); ++k) {
+    ExpectSameObservations(read.frames[k].left, written.frames[k].left);
+    ExpectSameObservations(read.frames[k].right, written.frames[k].right);
+  }
+#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
   // The requirement is "well under a second" for an optimised build (about 0.3 s measured);
-  // the bound leaves room for a loaded machine. Debug builds of nlohmann are several times
-  // slower and are not timed.
+  // the bound leaves room for a loaded machine. Debug and sanitizer builds (3 s under ASan)
+  // are several times slower and are not timed.
   EXPECT_LT(seconds, 2.0);
 #endif
   std::remove(path.c_str());

@@ -267,14 +267,26 @@ TEST(Regression, ToleranceNewMethodsAndUnregisteredReferenceMethods) {
   ASSERT_EQ(worse.failures.size(), 1u);
   EXPECT_NE(worse.failures[0].find("'trifocal_line_ekf' at noise.endpoint_px = 0: rot_err_deg_mean"), std::string::npos)
       << worse.failures[0];
-  // Near zero, the absolute floor applies: 0.001 m -> 0.0014 m passes (floor 0.5 mm).
-  std::vector<SummaryRow> r = rows;
-  r[0].metrics[kTransErrM].mean += 0.0004;
-  EXPECT_TRUE(CompareWithReference(c, r, same, reference_config).ok());
-  r[0].metrics[kTransErrM].mean += 0.0002;
-  EXPECT_FALSE(CompareWithReference(c, r, same, reference_config).ok());
+  // Near zero, the absolute floors apply (0.5 mm, 0.02 deg): against a reference of 0.2 mm and
+  // 0.01 deg, +0.4 mm and +0.015 deg pass although 1.25x the reference would not; +0.6 mm and
+  // +0.025 deg fail.
+  std::vector<SummaryRow> small = rows;
+  small[0].metrics[kTransErrM].mean = 0.0002;
+  small[0].metrics[kRotErrDeg].mean = 0.01;
+  const CsvTable small_reference = ParseCsv(SummaryCsv(c, small), "ref.csv");
+  auto shifted = [&](double trans_m, double rot_deg) {
+    std::vector<SummaryRow> r = small;
+    r[0].metrics[kTransErrM].mean += trans_m;
+    r[0].metrics[kRotErrDeg].mean += rot_deg;
+    return CompareWithReference(c, r, small_reference, reference_config).ok();
+  };
+  EXPECT_TRUE(shifted(0.0, 0.0));
+  EXPECT_TRUE(shifted(0.0004, 0.0));
+  EXPECT_FALSE(shifted(0.0006, 0.0));
+  EXPECT_TRUE(shifted(0.0, 0.015));
+  EXPECT_FALSE(shifted(0.0, 0.025));
   // Fewer finite trials than the reference fails.
-  r = rows;
+  std::vector<SummaryRow> r = rows;
   r[0].finite_trials = 2;
   EXPECT_FALSE(CompareWithReference(c, r, same, reference_config).ok());
 

@@ -127,8 +127,12 @@ TEST(SE3, FirstOrderFormAgreesToFirstOrder) {
   Vector6d xi;
   xi << 0.01, -0.02, 0.005, 0.004, -0.01, 0.02;
   const Rigid3d exact = ExpSE3(xi), approx = FirstOrderSE3(xi);
-  // Eq. 12 differs from eq. 5 at second order only.
-  EXPECT_LT((exact.ToMatrix4() - approx.ToMatrix4()).norm(), 10 * xi.squaredNorm());
+  // Eq. 12 differs from eq. 5 at second order only: |difference| ~ |xi|^2 / 2, a hundredth of it
+  // at xi / 10 (a first-order mistake, e.g. a flipped sign, would be ~|xi| and scale by 10).
+  const double err = (exact.ToMatrix4() - approx.ToMatrix4()).norm();
+  EXPECT_LT(err, xi.squaredNorm());
+  const double err_tenth = (ExpSE3(0.1 * xi).ToMatrix4() - FirstOrderSE3(0.1 * xi).ToMatrix4()).norm();
+  EXPECT_NEAR(err / err_tenth, 100.0, 5.0);
   EXPECT_LT((approx.rotation.transpose() * approx.rotation - Eigen::Matrix3d::Identity()).norm(),
             1e-14);
 }

@@ -2,6 +2,8 @@
 // another program (hand-written file), and the one-line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -85,18 +87,26 @@ TEST_F(EndToEnd, TracksAHandWrittenSequence) {
   for (const TimedPose& p : t) EXPECT_TRUE(p.world_from_cam.translation.allFinite());
 }
 
+void ExpectOneErrorLine(const std::string& output) {
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_EQ(output.rfind("track: error: ", 0), 0u) << output;
+}
+
 TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
   Result r = RunCommand(Bin("track") + " --method no_such --input x.json --output y.tum");
   EXPECT_EQ(r.exit_code, 1);
+  ExpectOneErrorLine(r.output);
   EXPECT_NE(r.output.find("unknown method 'no_such'"), std::string::npos) << r.output;
   {
     std::ofstream(Path("bad.json")) << R"({"filter": {"max_iterations": 0}})";
   }
   r = RunCommand(Bin("track") + " --method trifocal_line_ekf --config " + Path("bad.json") + " --print-config");
   EXPECT_EQ(r.exit_code, 1);
+  ExpectOneErrorLine(r.output);
   EXPECT_NE(r.output.find(Path("bad.json") + ": key 'filter.max_iterations'"), std::string::npos) << r.output;
   r = RunCommand(Bin("track") + " --method trifocal_line_ekf --input " + Path("missing.json") + " --output " + Path("o.tum"));
   EXPECT_EQ(r.exit_code, 1);
+  ExpectOneErrorLine(r.output);
   EXPECT_NE(r.output.find("missing.json"), std::string::npos) << r.output;
   r = RunCommand(Bin("track") + " --bogus-flag");
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -46,7 +46,7 @@ TEST_P(IteratedUpdate, IteratesAsConfigured) {
   // prediction is already negligible, so most updates stop after two iterations, not four.
   const auto early = RunAndCount(GetParam(), {{"max_iterations", 4}}, sim);
   EXPECT_GT(early.update_iterations, early.updates);
-  EXPECT_LT(early.update_iterations, 3 * early.updates);
+  EXPECT_LE(early.update_iterations, 2.3 * early.updates);  // measured 2.07 and 1.93 per update
 }
 
 INSTANTIATE_TEST_SUITE_P(StereoEkfTrackers, IteratedUpdate,
@@ -82,6 +82,7 @@ class LinearFeatureModel final : public FeatureModel {
   bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance, FeatureBlock* block) const override {
     const Feature& f = features_[index];
     const Vector6d d = LogSE3(cam_from_ref);
+    if (index == degenerate_away_ && d.norm() > 1e-12) return false;
     block->residual = f.a * (d - d_true_) + (1.0 + noise_growth_ * d.squaredNorm()) * f.noise;
     block->jacobian = f.a;  // exact at M = I without noise growth; the tests use the first update
     if (with_covariance) block->covariance = f.r;
@@ -97,26 +98,47 @@ class LinearFeatureModel final : public FeatureModel {
   void set_noise(int index, const Eigen::Vector4d& noise) { features_[index].noise = noise; }
   // The noise is scaled by 1 + growth |Log(M)|^2: a model that is not linear after all.
   void set_noise_growth(double growth) { noise_growth_ = growth; }
+  // Feature `index` can be measured at the prediction (M = I) only.
+  void set_degenerate_away(int index) { degenerate_away_ = index; }
 
  private:
   Vector6d d_true_;
   double noise_growth_ = 0.0;
+  int degenerate_away_ = -1;
   std::vector<Feature> features_;
 };
+
+// The motion the linear models measure: rad and m, within the velocity prior.
+Vector6d TrueDelta() { return (Vector6d() << 0.004, -0.003, 0.006, 0.01, -0.008, 0.005).finished(); }
+
+// The paper's filter (one update, no RANSAC, no noise adaptation), optionally without feature
+// replacement down to two features.
+StereoEkfOptions PaperFilter(bool two_features_suffice) {
+  StereoEkfOptions options;
+  ApplyPaperPreset(&options);
+  if (two_features_suffice) {
+    options.min_features = 2;
+    options.count_features = "measurable";
+  }
+  return options;
+}
+
+// Starts `tracker` and returns its output on the first frame after the start.
+TrackerOutput TrackFirstUpdate(StereoEkfTracker* tracker) {
+  tracker->Reset(StereoRig());
+  tracker->Track(StereoFrame{0.0, {}, {}});
+  return tracker->Track(StereoFrame{1.0 / 30.0, {}, {}});
+}
 
 class FirstUpdate : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
-  StereoEkfOptions options;
-  ApplyPaperPreset(&options);  // one update, no RANSAC, no noise adaptation
+  StereoEkfOptions options = PaperFilter(false);
   options.state = GetParam();
-  Vector6d d_true;
-  d_true << 0.004, -0.003, 0.006, 0.01, -0.008, 0.005;  // rad, m: within the velocity prior
+  const Vector6d d_true = TrueDelta();
   auto owned = std::make_unique<LinearFeatureModel>(5, d_true, 7);
   const LinearFeatureModel& model = *owned;
   StereoEkfTracker tracker(options, std::move(owned), nlohmann::json::object());
-  tracker.Reset(StereoRig());
-  tracker.Track(StereoFrame{0.0, {}, {}});
 
   // The prior of the first update: the filter's prediction from its start.
   PoseVelocityFilter replica;
@@ -141,7 +163,7 @@ TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
   const Matrix6d i_minus_wh = Matrix6d::Identity() - gain * h;
   const Matrix6d expected_covariance = i_minus_wh * p * i_minus_wh.transpose() + gain * r * gain.transpose();
 
-  const TrackerOutput out = tracker.Track(StereoFrame{1.0 / 30.0, {}, {}});
+  const TrackerOutput out = TrackFirstUpdate(&tracker);
   EXPECT_EQ(out.status, TrackingStatus::kTracking);
   EXPECT_EQ(out.features_used, n);
   EXPECT_EQ(tracker.counters().update_iterations, 1);
@@ -186,13 +208,9 @@ TEST(FirstUpdate, TwoFeaturesThatDisagreeLeaveThePrediction) {
   // rejected -- also when the rejection comes at a later iteration (the second case: errors
   // that grow away from the prediction, inside the gate at the first solution, outside it
   // once re-linearised there).
-  StereoEkfOptions options;
-  ApplyPaperPreset(&options);
-  options.min_features = 2;  // two features are enough: no feature replacement here
-  options.count_features = "measurable";
+  StereoEkfOptions options = PaperFilter(true);
   const double g = options.GateThreshold();
-  Vector6d d_true;
-  d_true << 0.004, -0.003, 0.006, 0.01, -0.008, 0.005;
+  const Vector6d d_true = TrueDelta();
   struct Case {
     double bad_cost;  // at the prediction's solution
     double growth;    // noise x (1 + growth |d|^2), |d| ~ |d_true| after the first step
@@ -210,9 +228,7 @@ TEST(FirstUpdate, TwoFeaturesThatDisagreeLeaveThePrediction) {
     auto model = DisagreeingPair(d_true, c.bad_cost, c.growth > 0.0 ? g / 9.0 : g);
     model->set_noise_growth(c.growth);
     StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
-    tracker.Reset(StereoRig());
-    tracker.Track(StereoFrame{0.0, {}, {}});
-    const TrackerOutput out = tracker.Track(StereoFrame{1.0 / 30.0, {}, {}});
+    const TrackerOutput out = TrackFirstUpdate(&tracker);
     EXPECT_EQ(out.status, c.expected);
     if (c.expected == TrackingStatus::kLost) {
       EXPECT_EQ(out.features_used, 0);
@@ -223,6 +239,35 @@ TEST(FirstUpdate, TwoFeaturesThatDisagreeLeaveThePrediction) {
       EXPECT_EQ(tracker.counters().updates, 1);
     }
   }
+}
+
+TEST(FirstUpdate, AFeatureDegenerateAtTheIterateLeavesTheUpdate) {
+  // Three features; one cannot be measured away from the prediction. After the first step it
+  // leaves the update: two features are used (not three, one of them with a zero cost).
+  StereoEkfOptions options = PaperFilter(true);
+  options.max_iterations = 3;
+  options.iteration_tolerance = 0.0;
+  auto model = std::make_unique<LinearFeatureModel>(3, TrueDelta(), 5);
+  model->set_degenerate_away(2);
+  StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
+  const TrackerOutput out = TrackFirstUpdate(&tracker);
+  EXPECT_EQ(out.status, TrackingStatus::kTracking);
+  EXPECT_EQ(out.features_used, 2);
+  EXPECT_EQ(tracker.counters().update_iterations, 3);
+}
+
+TEST(FirstUpdate, ANewReferenceOnAFrameWithoutUpdateIsStillLost) {
+  // The paper preset counts the lines inside the gate for feature replacement: a frame whose
+  // lines all miss the gate makes the current pair the new reference, but the pose is only a
+  // prediction, and the frame is reported lost (not "reinitialized").
+  auto model = std::make_unique<LinearFeatureModel>(3, TrueDelta(), 5);
+  for (int i = 0; i < 3; ++i) model->set_noise(i, Eigen::Vector4d::Constant(10.0));  // far outside
+  StereoEkfTracker tracker(PaperFilter(false), std::move(model), nlohmann::json::object());
+  const TrackerOutput out = TrackFirstUpdate(&tracker);
+  EXPECT_EQ(out.status, TrackingStatus::kLost);
+  EXPECT_EQ(out.features_used, 0);
+  EXPECT_EQ(tracker.counters().rebootstraps, 1);
+  EXPECT_EQ(tracker.counters().lost_frames, 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values("velocity", "pose_velocity"));

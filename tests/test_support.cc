@@ -36,8 +36,9 @@ TrialErrors FinalErrorOverTrials(const std::string& method, const nlohmann::json
     const PoseError e = ErrorAt(sim, run, static_cast<int>(run.outputs.size()) - 1);
     out.mean.rotation_deg += e.rotation_deg / trials;
     out.mean.translation_m += e.translation_m / trials;
-    out.worst.rotation_deg = std::max(out.worst.rotation_deg, e.rotation_deg);
-    out.worst.translation_m = std::max(out.worst.translation_m, e.translation_m);
+    // NaN-propagating maximum: std::max(worst, NaN) would keep `worst` and hide the trial.
+    if (!(e.rotation_deg <= out.worst.rotation_deg)) out.worst.rotation_deg = e.rotation_deg;
+    if (!(e.translation_m <= out.worst.translation_m)) out.worst.translation_m = e.translation_m;
   }
   return out;
 }

@@ -25,7 +25,8 @@ struct PoseError {
 // Error of the pose at `frame` (camera-to-world of the left camera against the ground truth).
 PoseError ErrorAt(const SimulatedSequence& sim, const TrackRun& run, int frame);
 
-// Mean and worst error at the last frame over `trials` seeds (seed = first_seed + k).
+// Mean and worst error at the last frame over `trials` seeds (seed = first_seed + k). A NaN
+// error makes the mean and the worst NaN (and every bound on them fail).
 struct TrialErrors {
   PoseError mean;
   PoseError worst;

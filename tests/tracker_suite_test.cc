@@ -2,6 +2,10 @@
 // to methods/registry.cc.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <memory>
+#include <vector>
+
 #include "common/json_reader.h"
 #include "tests/test_support.h"
 
@@ -41,6 +45,7 @@ TEST_P(TrackerSuite, NoiseFreeExactRecovery) {
 TEST_P(TrackerSuite, StaticCameraReportsNoMotion) {
   // A camera at rest seeing exact lines: no spurious motion on any frame (no drift, no
   // velocity made up by the filter).
+  if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker: never moves by construction";
   const SimulatedSequence sim = Simulated({{"motion", {{"type", "static"}}}, {"noise", {{"endpoint_px", 0.0}}}});
   auto tracker = Make();
   const TrackRun run = RunTracker(*tracker, sim.sequence);
@@ -82,6 +87,7 @@ TEST_P(TrackerSuite, LosingEveryFeatureHoldsThePose) {
   // The lines vanish for the last 30 frames (the camera looks at a blank wall): the tracker says
   // it is lost and does not extrapolate its last velocity for ever. The paper protocol moves up
   // to 0.010 m and 1.2 deg per frame, so 30 frames of coasting would carry it up to 0.3 m.
+  if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker: never moves by construction";
   SimulatedSequence sim = Simulated({{"frames", 60}, {"noise", {{"endpoint_px", 1.0}}}});
   for (int k = 30; k < 60; ++k) {
     sim.sequence.frames[k].left.clear();
@@ -93,12 +99,17 @@ TEST_P(TrackerSuite, LosingEveryFeatureHoldsThePose) {
   for (int k = 30; k < 60; ++k) {
     const TrackerOutput& o = run.outputs[k];
     ASSERT_TRUE(IsFinite(o.cam_from_world)) << "frame " << k;
-    if (!info().plumbing_only) {
-      EXPECT_EQ(o.status, TrackingStatus::kLost) << "frame " << k;
-    }
+    EXPECT_EQ(o.status, TrackingStatus::kLost) << "frame " << k;
+    // Measured for both EKFs: 11.8 mm / 1.66 deg in all (the velocity halves every frame).
     const Rigid3d moved = o.cam_from_world * last_seen.Inverse();
-    EXPECT_LT(moved.translation.norm(), 0.03) << "frame " << k;
-    EXPECT_LT(Eigen::AngleAxisd(moved.rotation).angle(), 3.0 * 1.2 * M_PI / 180.0) << "frame " << k;
+    EXPECT_LT(moved.translation.norm(), 0.015) << "frame " << k;
+    EXPECT_LT(Eigen::AngleAxisd(moved.rotation).angle(), 2.0 * M_PI / 180.0) << "frame " << k;
+    // After 15 frames the pose has stopped.
+    if (k >= 45) {
+      const Rigid3d step = o.cam_from_world * run.outputs[k - 1].cam_from_world.Inverse();
+      EXPECT_LT(step.translation.norm(), 1e-6) << "frame " << k;
+      EXPECT_LT(Eigen::AngleAxisd(step.rotation).angle(), 1e-6) << "frame " << k;
+    }
   }
 }
 
@@ -117,6 +128,46 @@ TEST_P(TrackerSuite, OptionsRoundTripThroughJson) {
   const nlohmann::json again = CreateTracker(GetParam(), options)->Options();
   EXPECT_EQ(options, again);
   EXPECT_THROW(CreateTracker(GetParam(), {{"no_such_option", 1}}, "bad.json"), ConfigError);
+
+  // Every leaf of the echoed options, changed alone: either the new value is rejected with a
+  // ConfigError (an invalid value; every string gets one) or the tracker echoes it back. A
+  // number or flag must also have some accepted new value, so a key that is accepted but
+  // ignored (echoed at its default) fails here.
+  const nlohmann::json flat = options.empty() ? nlohmann::json::object() : options.flatten();
+  for (const auto& [pointer, value] : flat.items()) {
+    std::vector<nlohmann::json> candidates;
+    if (value.is_boolean()) {
+      candidates = {!value.get<bool>()};
+    } else if (value.is_number_unsigned()) {
+      candidates = {value.get<std::uint64_t>() + 1};
+    } else if (value.is_number_integer()) {
+      const int v = value.get<int>();
+      candidates = {v + 1, v - 1};
+    } else if (value.is_number_float()) {
+      const double v = value.get<double>();
+      candidates = {v == 0.0 ? 0.5 : 0.5 * v, v == 0.0 ? 0.5 : 1.5 * v};
+    } else if (value.is_string()) {
+      candidates = {"no such value"};
+    }
+    ASSERT_FALSE(candidates.empty()) << pointer << ": unexpected JSON type " << value.type_name();
+    bool accepted = false;
+    for (const nlohmann::json& candidate : candidates) {
+      nlohmann::json changed_flat = flat;
+      changed_flat[pointer] = candidate;
+      const nlohmann::json changed = changed_flat.unflatten();
+      std::unique_ptr<PoseTracker> tracker;
+      try {
+        tracker = CreateTracker(GetParam(), changed, "changed.json");
+      } catch (const ConfigError&) {
+        continue;  // not a valid value for this key
+      }
+      accepted = true;
+      EXPECT_EQ(tracker->Options().flatten()[pointer], candidate) << pointer << " is read but ignored";
+    }
+    if (!value.is_string()) {
+      EXPECT_TRUE(accepted) << pointer << ": no changed value was accepted";
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Registered, TrackerSuite, ::testing::ValuesIn(RegisteredTrackerNames()),

@@ -1,7 +1,9 @@
 // Accuracy regressions of the trifocal-line EKF on the paper's protocol (Sec. 5.1): 40 random
 // lines, 100 frames, per-frame motion up to 1.2 deg and 0.010 m, error of the pose at frame 100,
-// mean over 20 trials on fixed seeds. The bounds are the project's targets (issue 3); the
-// measured values are in the comments, so a regression shows as a lost margin.
+// mean over 20 trials on fixed seeds. Each test checks the project's target (issue 3) and, where
+// the measured value is well inside it, a regression bound about 1.3x the measured value (1.5x
+// where single trials can flip), so that a lost margin fails before the target does. The
+// measured values are in the comments.
 #include <gtest/gtest.h>
 
 #include "tests/test_support.h"
@@ -21,34 +23,44 @@ TEST(TrifocalLineEkfAccuracy, FaithfulSetting) {
   // that level; the default setting below is the one that beats the paper.
   const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kFaithful, kPaperProtocol, 20);
   EXPECT_TRUE(e.all_finite);
-  EXPECT_LT(e.mean.translation_m, 0.01);
-  EXPECT_LT(e.mean.rotation_deg, 0.7);
+  EXPECT_LT(e.mean.translation_m, 0.01);  // the paper's figure
+  // Regression: measured 0.448 deg / 4.06 mm (worst trial 1.17 deg / 12.9 mm).
+  EXPECT_LT(e.mean.translation_m, 0.0055);
+  EXPECT_LT(e.mean.rotation_deg, 0.6);
 }
 
 TEST(TrifocalLineEkfAccuracy, DefaultSettingHalvesThePapersError) {
-  // Measured 0.146 deg / 1.40 mm (worst trial 0.36 deg / 2.7 mm).
   const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kDefault, kPaperProtocol, 20);
   EXPECT_TRUE(e.all_finite);
-  EXPECT_LE(e.mean.translation_m, 0.005);
+  EXPECT_LE(e.mean.translation_m, 0.005);  // issue 3's target
   EXPECT_LE(e.mean.rotation_deg, 0.2);
+  // Regression: measured 0.1465 deg / 1.40 mm (worst trial 0.36 deg / 2.7 mm).
+  EXPECT_LE(e.mean.translation_m, 0.0019);
+  EXPECT_LE(e.mean.rotation_deg, 0.19);
+  EXPECT_LE(e.worst.translation_m, 0.0035);
+  EXPECT_LE(e.worst.rotation_deg, 0.47);
 }
 
 TEST(TrifocalLineEkfAccuracy, NoiseFreeIsExact) {
   // Measured worst of 20 trials: 2e-5 deg / 1.9e-7 m.
   const TrialErrors e =
       FinalErrorOverTrials("trifocal_line_ekf", kDefault, {{"noise", {{"endpoint_px", 0.0}}}}, 20);
+  EXPECT_TRUE(e.all_finite);
   EXPECT_LT(e.worst.translation_m, 1e-6);
   EXPECT_LT(e.worst.rotation_deg, 1e-4);
 }
 
 TEST(TrifocalLineEkfAccuracy, TwentyPercentOutlierSegments) {
   // Each observed segment, any image and frame, replaced by a random one with probability 0.2:
-  // only 0.8^4 = 41 % of the lines have all four segments right. Measured 0.31 deg / 2.8 mm.
+  // only 0.8^4 = 41 % of the lines have all four segments right.
   const TrialErrors e =
       FinalErrorOverTrials("trifocal_line_ekf", kDefault, {{"outliers", {{"rate", 0.2}}}}, 20);
   EXPECT_TRUE(e.all_finite);
-  EXPECT_LE(e.mean.translation_m, 0.01);
+  EXPECT_LE(e.mean.translation_m, 0.01);  // issue 3's target
   EXPECT_LE(e.mean.rotation_deg, 0.5);
+  // Regression: measured 0.3125 deg / 2.79 mm (worst trial 1.13 deg / 8.8 mm).
+  EXPECT_LE(e.mean.translation_m, 0.0037);
+  EXPECT_LE(e.mean.rotation_deg, 0.41);
 }
 
 TEST(TrifocalLineEkfAccuracy, ThirtyPercentOutlierSegmentsWithThirtyLines) {
@@ -58,16 +70,18 @@ TEST(TrifocalLineEkfAccuracy, ThirtyPercentOutlierSegmentsWithThirtyLines) {
   const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kDefault,
                                              {{"max_features", 30}, {"outliers", {{"rate", 0.3}}}}, 20);
   EXPECT_TRUE(e.all_finite);
-  // Measured 0.61 deg / 5.5 mm, worst trial 1.41 deg / 12 mm.
-  EXPECT_LE(e.mean.translation_m, 0.01);
-  EXPECT_LE(e.mean.rotation_deg, 1.0);
+  // Measured 0.613 deg / 5.5 mm, worst trial 1.41 deg / 12 mm.
+  EXPECT_LE(e.mean.translation_m, 0.0083);
+  EXPECT_LE(e.mean.rotation_deg, 0.92);
   EXPECT_LE(e.worst.translation_m, 0.03);
   EXPECT_LE(e.worst.rotation_deg, 3.0);
 }
 
 TEST(TrifocalLineEkfAccuracy, StaticCameraWithNoiseStaysNearItsStart) {
   // A camera at rest (the EuRoC excerpt's situation) with +-1 px noise: the error is the
-  // estimate's noise, it does not grow.
+  // estimate's noise, it does not grow. Measured: at most 0.117 deg / 1.0 mm on any frame; mean
+  // translation error 0.42 mm over frames 1-10 and 0.48 mm over frames 90-99.
+  double early_m = 0.0, late_m = 0.0;
   for (std::uint64_t seed : {1, 2, 3}) {
     SimulationConfig config =
         SimulationConfigFromJson({{"motion", {{"type", "static"}}}, {"noise", {{"endpoint_px", 1.0}}}}, "test");
@@ -77,15 +91,20 @@ TEST(TrifocalLineEkfAccuracy, StaticCameraWithNoiseStaysNearItsStart) {
     const TrackRun run = RunTracker(*tracker, sim.sequence);
     for (size_t k = 0; k < run.outputs.size(); ++k) {
       const PoseError e = ErrorAt(sim, run, static_cast<int>(k));
-      ASSERT_LT(e.translation_m, 2e-3) << "seed " << seed << " frame " << k;
-      ASSERT_LT(e.rotation_deg, 0.25) << "seed " << seed << " frame " << k;
+      ASSERT_LT(e.translation_m, 1.4e-3) << "seed " << seed << " frame " << k;
+      ASSERT_LT(e.rotation_deg, 0.16) << "seed " << seed << " frame " << k;
+      if (k >= 1 && k <= 10) early_m += e.translation_m;
+      if (k >= 90 && k <= 99) late_m += e.translation_m;
     }
   }
+  EXPECT_LE(late_m, 1.5 * early_m) << "the error grows at rest";
 }
 
 TEST(TrifocalLineEkfAccuracy, TwoLinesTrackAHundredFrames) {
-  // Exactly two non-degenerate lines at +-0.5 px.
-  double mean_translation = 0.0;
+  // Exactly two non-degenerate lines at +-0.5 px. Issue 3: finite poses, error <= 2 cm.
+  // Measured: mean 0.96 deg / 8.4 mm, worst trial 2.98 deg / 22.7 mm; a tracker that never
+  // moves is 35-110 mm off on these seeds.
+  double mean_translation = 0.0, mean_rotation = 0.0;
   const int trials = 20;
   for (int k = 0; k < trials; ++k) {
     SimulationConfig config = SimulationConfigFromJson({{"noise", {{"endpoint_px", 0.5}}}}, "test");
@@ -102,9 +121,13 @@ TEST(TrifocalLineEkfAccuracy, TwoLinesTrackAHundredFrames) {
     }
     const PoseError e = ErrorAt(sim, run, 99);
     EXPECT_LE(e.translation_m, 0.03) << "seed " << config.seed;
+    EXPECT_LE(e.rotation_deg, 4.0) << "seed " << config.seed;
     mean_translation += e.translation_m / trials;
+    mean_rotation += e.rotation_deg / trials;
   }
-  EXPECT_LE(mean_translation, 0.02);
+  EXPECT_LE(mean_translation, 0.02);  // issue 3's target
+  EXPECT_LE(mean_translation, 0.0125);  // regression
+  EXPECT_LE(mean_rotation, 1.45);
 }
 
 }  // namespace

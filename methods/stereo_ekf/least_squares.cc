@@ -137,10 +137,15 @@ bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& f
       ne.AddWhitened(rw, jw);
     }
     if (it == iterations) break;  // the last pass only evaluates the information at the solution
+    // A singular Hessian is allowed: Yu's minimal sample, two points, never observes the
+    // rotation about the line through them. LDLT's (near-)zero pivot meets a (near-)zero
+    // gradient component there, so that direction does not move; the others are solved.
+    // (Rejecting such samples was measured: RANSAC over points then fails.)
     const Eigen::LDLT<Matrix6d> ldlt(ne.FullHessian());
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
     const Vector6d step = -ldlt.solve(ne.gradient);
-    if (!step.allFinite() || step.tail<3>().norm() > 0.5) return false;  // diverging
+    // Diverging: half a radian, or a metre, in one step of a per-frame pose.
+    if (!step.allFinite() || step.tail<3>().norm() > 0.5 || step.head<3>().norm() > 1.0) return false;
     pose = ExpSE3(step) * pose;
     if (step.norm() < 1e-12) {
       it = iterations - 1;  // converged: one more pass for the information

@@ -90,7 +90,9 @@ bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int
 
 // Gauss-Newton without prior on the features `indices`, starting at *cam_from_ref, whitened with
 // each feature's covariance. On success returns true and sets *cam_from_ref and *information (the
-// Hessian J^T R^-1 J at the solution).
+// Hessian J^T R^-1 J at the solution, possibly singular: a direction the features do not observe
+// is left where it started). Fails when a step diverges. iterations = 0 only evaluates the
+// information at *cam_from_ref.
 bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                 const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
                 Matrix6d* information);

@@ -59,23 +59,28 @@ void RobustPoseSolver::Solve(const FeatureModel& model, const std::vector<Weight
     const double p_good = w * w;
     if (p_good >= 1.0 - 1e-12) break;
     if (p_good > 0.0) {
-      needed = static_cast<int>(std::ceil(std::log(1.0 - confidence) / std::log(1.0 - p_good)));
+      // Clamped in double: with many features and one inlier the count exceeds int.
+      needed = static_cast<int>(std::min<double>(
+          std::ceil(std::log(1.0 - confidence) / std::log(1.0 - p_good)), max_iterations));
     }
   }
   if (result->inliers.size() < 2) return;
 
-  // Refine on the consensus set, then re-collect the inliers at the refined pose once.
+  // Refine on the consensus set and re-collect the inliers at the refined pose; keep it if it
+  // explains at least as many features, else the sample's pose and its inliers stand. Either way
+  // the inliers are those inside the gate at the returned pose, and the information is theirs
+  // there (the update that follows re-linearises and iterates from this start).
   Rigid3d pose = best_pose;
-  if (!RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 5, &pose,
-                  &information)) {
-    pose = best_pose;
+  if (RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 5, &pose,
+                 &information)) {
+    Score(model, features, valid, pose, gate, &scratch_inliers_);
+    if (scratch_inliers_.size() >= result->inliers.size()) {
+      result->inliers.swap(scratch_inliers_);
+      best_pose = pose;
+    }
   }
-  Score(model, features, valid, pose, gate, &scratch_inliers_);
-  if (scratch_inliers_.size() >= result->inliers.size()) {
-    result->inliers.swap(scratch_inliers_);
-    best_pose = pose;
-  }
-  if (!RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 5,
+  if (result->inliers.size() < 2 ||
+      !RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 0,
                   &best_pose, &information)) {
     return;
   }

@@ -66,6 +66,10 @@ TEST_P(LineTransferModelTest, ZeroResidualAtTruthAndJacobianMatches) {
     // Jacobian against central differences, away from the truth too.
     const Rigid3d at = ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
     ASSERT_TRUE(model.Evaluate(i, at, false, &block));
+    // Negative control: away from the truth the residual and the Jacobian do not vanish (a model
+    // returning zeros would pass the two checks around this one).
+    EXPECT_GT(block.residual.norm(), 1e-3) << "feature " << i;
+    EXPECT_GT(block.jacobian.norm(), 1.0) << "feature " << i;
     const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
       FeatureBlock b;
       EXPECT_TRUE(model.Evaluate(i, ExpSE3(d) * at, false, &b));
