@@ -102,14 +102,17 @@ TEST(Simulate, NoiseFreeObservationsLieOnTheProjectedLines) {
 
 TEST(Simulate, FixedEndpointsAreTheProjectedEndpoints) {
   const SimulatedSequence s = Simulate(FromJson(R"({"noise": {"endpoint_px": 0}})"));
+  std::size_t checked = 0;
   for (std::size_t k = 0; k < s.sequence.frames.size(); ++k) {
     for (int camera : {0, 1}) {
       for (const LineObservation& o : Image(s.sequence.frames[k], camera)) {
         EXPECT_LT((o.segment.head<2>() - ProjectEndpoint(s, k, camera, s.lines[o.id].p)).norm(), 1e-9);
         EXPECT_LT((o.segment.tail<2>() - ProjectEndpoint(s, k, camera, s.lines[o.id].q)).norm(), 1e-9);
+        ++checked;
       }
     }
   }
+  EXPECT_GT(checked, 7000u);  // 100 frames x 2 images x most of the 40 lines
 }
 
 TEST(Simulate, SlidingEndpointsMoveAlongTheLine) {

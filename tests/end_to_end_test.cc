@@ -83,8 +83,17 @@ TEST_F(EndToEnd, TracksAHandWrittenSequence) {
   const Result r = RunCommand(Bin("track") + " --method trifocal_line_ekf --input " + input + " --output " + Path("t.tum"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Trajectory t = ReadTumTrajectory(Path("t.tum"));
-  ASSERT_FALSE(t.empty());
-  for (const TimedPose& p : t) EXPECT_TRUE(p.world_from_cam.translation.allFinite());
+  // One pose per frame, at the frame times of the file (0, 0.05, 0.05: a repeated time is kept),
+  // the first the world (identity), all finite.
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_EQ(t[0].time, 0.0);
+  EXPECT_EQ(t[1].time, 0.05);
+  EXPECT_EQ(t[2].time, 0.05);
+  EXPECT_LT((t[0].world_from_cam.ToMatrix4() - Eigen::Matrix4d::Identity()).norm(), 1e-9);
+  for (const TimedPose& p : t) {
+    EXPECT_TRUE(p.world_from_cam.translation.allFinite());
+    EXPECT_TRUE(p.world_from_cam.rotation.allFinite());
+  }
 }
 
 void ExpectOneErrorLine(const std::string& output) {

@@ -72,6 +72,15 @@ TEST_P(TrackerSuite, FiniteOutputOnEveryFrameOfAHostileSequence) {
     LineObservation& o = seq.frames[30].left.front();
     o.segment << 100.0, 100.0, 100.0, 100.0;  // zero length
   }
+  for (int k = 40; k < 45; ++k) {
+    StereoFrame& f = seq.frames[k];
+    if (!f.left.empty()) f.left.push_back(f.left.front());  // the same id twice in one image
+    if (!f.right.empty()) {
+      LineObservation right_only = f.right.back();
+      right_only.id = 1000000 + k;  // seen in the right image only
+      f.right.push_back(right_only);
+    }
+  }
   auto tracker = Make();
   const TrackRun run = RunTracker(*tracker, seq);
   ASSERT_EQ(run.outputs.size(), seq.frames.size());
