@@ -1,0 +1,149 @@
+#include "methods/stereo_ekf/pose_velocity_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "geometry/se3.h"
+
+namespace slt {
+namespace {
+
+using Matrix12d = PoseVelocityFilter::Matrix12d;
+
+StereoEkfOptions Options(const std::string& state) {
+  StereoEkfOptions o;
+  o.state = state;
+  return o;
+}
+
+TEST(PoseVelocityFilter, FirstPredictionFromRestIsThePriorPlusQ) {
+  // At rest (xi = 0) F = [[I, I], [0, I]]: the pose inherits the velocity's uncertainty.
+  for (const std::string state : {"velocity", "pose_velocity"}) {
+    const StereoEkfOptions o = Options(state);
+    PoseVelocityFilter f;
+    f.Reset(o);
+    f.Predict();
+    const double vm = o.initial_velocity_sigma_m * o.initial_velocity_sigma_m + o.accel_sigma_m * o.accel_sigma_m;
+    const double vr =
+        o.initial_velocity_sigma_rad * o.initial_velocity_sigma_rad + o.accel_sigma_rad * o.accel_sigma_rad;
+    Vector6d diag;
+    diag << vm, vm, vm, vr, vr, vr;
+    const Matrix6d d = diag.asDiagonal();
+    EXPECT_LT((f.covariance().topLeftCorner<6, 6>() - d).norm(), 1e-15) << state;
+    EXPECT_LT((f.covariance().topRightCorner<6, 6>() - d).norm(), 1e-15) << state;
+    EXPECT_LT((f.covariance().bottomRightCorner<6, 6>() - d).norm(), 1e-15) << state;
+    EXPECT_DOUBLE_EQ(vm, 0.02 * 0.02 + 0.002 * 0.002);  // the defaults, written out
+    EXPECT_TRUE(f.cam_from_ref().translation.isZero());
+  }
+}
+
+// Error state e = [d; dv] (true M = Exp(d) M, true xi = xi + dv); the motion M' = Exp(xi) M maps
+// it to d' = Log(Exp(xi + dv) Exp(d) M (Exp(xi) M)^-1). Its Jacobian at e = 0, by central
+// differences, is the F the filter propagates with.
+Eigen::Matrix<double, 6, 12> NumericTransition(const Rigid3d& m, const Vector6d& xi) {
+  const Rigid3d predicted_inverse = (ExpSE3(xi) * m).Inverse();
+  Eigen::Matrix<double, 6, 12> f;
+  const double h = 1e-6;
+  for (int j = 0; j < 12; ++j) {
+    Vector6d d = Vector6d::Zero(), dv = Vector6d::Zero();
+    (j < 6 ? d(j) : dv(j - 6)) = h;
+    const Vector6d plus = LogSE3(ExpSE3(xi + dv) * ExpSE3(d) * m * predicted_inverse);
+    const Vector6d minus = LogSE3(ExpSE3(xi - dv) * ExpSE3(-d) * m * predicted_inverse);
+    f.col(j) = (plus - minus) / (2 * h);
+  }
+  return f;
+}
+
+TEST(PoseVelocityFilter, PredictionPropagatesWithTheMotionModelsJacobian) {
+  // Bring the filter to a moving state with a full covariance (a correction couples pose and
+  // velocity), then compare its prediction with F (P + diag(0, Q)) F^T (eq. 18), F taken
+  // numerically from the motion model.
+  const StereoEkfOptions o = Options("pose_velocity");
+  PoseVelocityFilter f;
+  f.Reset(o);
+  f.Predict();
+  Vector6d delta;
+  delta << 0.008, -0.004, 0.01, 0.012, -0.006, 0.009;  // a per-frame motion
+  const Matrix6d p_pp = f.PoseCovariance();
+  const Matrix6d posterior = 0.3 * p_pp;
+  f.Correct(delta, posterior, p_pp.inverse());
+  ASSERT_GT(f.velocity().norm(), 1e-3);
+  const Rigid3d m = f.cam_from_ref();
+  const Vector6d xi = f.velocity();
+  Matrix12d p = f.covariance();
+  p.block<3, 3>(6, 6) += o.accel_sigma_m * o.accel_sigma_m * Eigen::Matrix3d::Identity();
+  p.block<3, 3>(9, 9) += o.accel_sigma_rad * o.accel_sigma_rad * Eigen::Matrix3d::Identity();
+  Matrix12d big_f = Matrix12d::Identity();
+  big_f.topRows<6>() = NumericTransition(m, xi);
+  const Matrix12d expected = big_f * p * big_f.transpose();
+
+  f.Predict();
+  EXPECT_LT((LogSE3(f.cam_from_ref() * (ExpSE3(xi) * m).Inverse())).norm(), 1e-12);
+  // The filter uses J_l to first order: agreement to O(|xi|^2) relative.
+  EXPECT_LT((f.covariance() - expected).norm(), 1e-3 * expected.norm());
+  // A wrong convention (e.g. a right instead of a left perturbation) breaks it at O(|xi|).
+  Matrix12d wrong_f = Matrix12d::Identity();
+  wrong_f.topLeftCorner<6, 6>() = Adjoint(ExpSE3(xi)).inverse();
+  wrong_f.topRightCorner<6, 6>() = Matrix6d::Identity();
+  EXPECT_GT((wrong_f * p * wrong_f.transpose() - expected).norm(), 1e-2 * expected.norm());
+}
+
+TEST(PoseVelocityFilter, CorrectionIsTheKalmanUpdateOfTheFullState) {
+  // Measuring the pose (H = [I 0]) with covariance R: the filter's split update (pose MAP by the
+  // caller, velocity by the Gaussian conditional) equals the 12-D Kalman update.
+  const StereoEkfOptions o = Options("pose_velocity");
+  PoseVelocityFilter f;
+  f.Reset(o);
+  f.Predict();
+  Vector6d first;
+  first << 0.006, 0.002, -0.004, 0.01, 0.003, -0.007;
+  f.Correct(first, 0.5 * f.PoseCovariance(), f.PoseCovariance().inverse());
+  f.Predict();  // a prior with pose-velocity correlation
+
+  const Matrix12d p = f.covariance();
+  const Vector6d velocity_before = f.velocity();
+  const Rigid3d pose_before = f.cam_from_ref();
+  Vector6d r_diag;
+  r_diag << 1e-6, 2e-6, 1.5e-6, 4e-6, 3e-6, 5e-6;
+  const Matrix6d r = r_diag.asDiagonal();
+  Vector6d z;  // innovation of the pose measurement
+  z << 0.001, -0.002, 0.0015, 0.003, -0.001, 0.002;
+  Eigen::Matrix<double, 6, 12> h = Eigen::Matrix<double, 6, 12>::Zero();
+  h.leftCols<6>().setIdentity();
+  const Eigen::Matrix<double, 12, 6> k = p * h.transpose() * (h * p * h.transpose() + r).inverse();
+  const Eigen::Matrix<double, 12, 1> correction = k * z;
+  const Matrix12d expected = (Matrix12d::Identity() - k * h) * p;
+
+  const Matrix6d p_pp = p.topLeftCorner<6, 6>();
+  const Matrix6d posterior = (p_pp.inverse() + r.inverse()).inverse();
+  f.Correct(correction.head<6>(), posterior, p_pp.inverse());
+  EXPECT_LT((f.velocity() - velocity_before - correction.tail<6>()).norm(), 1e-9 * correction.norm());
+  EXPECT_LT((LogSE3(f.cam_from_ref() * pose_before.Inverse()) - correction.head<6>()).norm(), 1e-12);
+  EXPECT_LT((f.covariance() - 0.5 * (expected + expected.transpose())).norm(), 1e-9 * p.norm());
+}
+
+TEST(PoseVelocityFilter, VelocityStateForgetsThePoseUncertainty) {
+  // The paper's filter (eq. 10): before each prediction M_{t-1} is exact, so the predicted pose
+  // covariance is the velocity's, carried through J_l, whatever the pose covariance was.
+  const StereoEkfOptions o = Options("velocity");
+  PoseVelocityFilter f;
+  f.Reset(o);
+  f.Predict();
+  Vector6d delta;
+  delta << 0.008, -0.004, 0.01, 0.012, -0.006, 0.009;
+  f.Correct(delta, 0.3 * f.PoseCovariance(), f.PoseCovariance().inverse());
+  const Matrix6d p_vv =
+      f.covariance().bottomRightCorner<6, 6>() +
+      (Vector6d() << Eigen::Vector3d::Constant(o.accel_sigma_m * o.accel_sigma_m),
+       Eigen::Vector3d::Constant(o.accel_sigma_rad * o.accel_sigma_rad))
+          .finished()
+          .asDiagonal()
+          .toDenseMatrix();
+  const Matrix6d jl = LeftJacobianSE3FirstOrder(f.velocity());
+  f.Predict();
+  EXPECT_LT((f.PoseCovariance() - jl * p_vv * jl.transpose()).norm(), 1e-12 * p_vv.norm());
+}
+
+}  // namespace
+}  // namespace slt
