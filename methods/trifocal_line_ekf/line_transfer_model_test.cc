@@ -148,10 +148,24 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   o.min_epipolar_angle_deg = 1.0;
   LineTransferModel model(o);
   model.Reset(scene.rig);
-  model.SetReference(scene.Frame(Rigid3d()));
+  EXPECT_EQ(model.SetReference(scene.Frame(Rigid3d())), 0);  // not measurable
   model.SetCurrent(scene.Frame(Rigid3d()));
   FeatureBlock block;
   EXPECT_FALSE(model.Evaluate(0, Rigid3d(), true, &block));
+
+  // The same line tilted by 2 deg in the image passes a 1 deg gate, and fails a 3 deg one.
+  const double dy = 0.1 * std::tan(2.0 * M_PI / 180.0);
+  scene.lines = {{{-0.1, 0.02 - dy, 0.5}, {0.1, 0.02 + dy, 0.5}}};
+  LineTransferModel tilted(o);
+  tilted.Reset(scene.rig);
+  EXPECT_EQ(tilted.SetReference(scene.Frame(Rigid3d())), 1);
+  tilted.SetCurrent(scene.Frame(SomeMotion()));
+  EXPECT_TRUE(tilted.Evaluate(0, SomeMotion(), true, &block));
+  EXPECT_LT(block.residual.norm(), 1e-6);
+  o.min_epipolar_angle_deg = 3.0;
+  LineTransferModel strict(o);
+  strict.Reset(scene.rig);
+  EXPECT_EQ(strict.SetReference(scene.Frame(Rigid3d())), 0);
 }
 
 TEST(LineTransferModel, OptionErrorsNameTheKey) {
