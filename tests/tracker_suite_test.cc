@@ -2,10 +2,10 @@
 // to methods/registry.cc.
 #include <gtest/gtest.h>
 
-#include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "common/json_changes.h"
 #include "common/json_reader.h"
 #include "tests/test_support.h"
 
@@ -144,20 +144,7 @@ TEST_P(TrackerSuite, OptionsRoundTripThroughJson) {
   // ignored (echoed at its default) fails here.
   const nlohmann::json flat = options.empty() ? nlohmann::json::object() : options.flatten();
   for (const auto& [pointer, value] : flat.items()) {
-    std::vector<nlohmann::json> candidates;
-    if (value.is_boolean()) {
-      candidates = {!value.get<bool>()};
-    } else if (value.is_number_unsigned()) {
-      candidates = {value.get<std::uint64_t>() + 1};
-    } else if (value.is_number_integer()) {
-      const int v = value.get<int>();
-      candidates = {v + 1, v - 1};
-    } else if (value.is_number_float()) {
-      const double v = value.get<double>();
-      candidates = {v == 0.0 ? 0.5 : 0.5 * v, v == 0.0 ? 0.5 : 1.5 * v};
-    } else if (value.is_string()) {
-      candidates = {"no such value"};
-    }
+    const std::vector<nlohmann::json> candidates = ChangedJsonValues(value);
     ASSERT_FALSE(candidates.empty()) << pointer << ": unexpected JSON type " << value.type_name();
     bool accepted = false;
     for (const nlohmann::json& candidate : candidates) {

@@ -17,6 +17,28 @@ StereoEkfOptions Options(const std::string& state) {
   return o;
 }
 
+// Q of eq. 18: the per-frame velocity change.
+Matrix6d VelocityNoise(const StereoEkfOptions& o) {
+  Vector6d q;
+  q << Eigen::Vector3d::Constant(o.accel_sigma_m * o.accel_sigma_m),
+      Eigen::Vector3d::Constant(o.accel_sigma_rad * o.accel_sigma_rad);
+  return q.asDiagonal();
+}
+
+// A filter started and corrected once by `delta` with posterior pose covariance `shrink` P_pp:
+// moving, with pose and velocity correlated.
+PoseVelocityFilter Moving(const StereoEkfOptions& o, const Vector6d& delta, double shrink) {
+  PoseVelocityFilter f;
+  f.Reset(o);
+  f.Predict();
+  const Matrix6d p_pp = f.PoseCovariance();
+  f.Correct(delta, shrink * p_pp, p_pp.inverse());
+  return f;
+}
+
+// A per-frame motion.
+Vector6d SomeDelta() { return (Vector6d() << 0.008, -0.004, 0.01, 0.012, -0.006, 0.009).finished(); }
+
 TEST(PoseVelocityFilter, FirstPredictionFromRestIsThePriorPlusQ) {
   // At rest (xi = 0) F = [[I, I], [0, I]]: the pose inherits the velocity's uncertainty.
   for (const std::string state : {"velocity", "pose_velocity"}) {
@@ -60,20 +82,12 @@ TEST(PoseVelocityFilter, PredictionPropagatesWithTheMotionModelsJacobian) {
   // velocity), then compare its prediction with F (P + diag(0, Q)) F^T (eq. 18), F taken
   // numerically from the motion model.
   const StereoEkfOptions o = Options("pose_velocity");
-  PoseVelocityFilter f;
-  f.Reset(o);
-  f.Predict();
-  Vector6d delta;
-  delta << 0.008, -0.004, 0.01, 0.012, -0.006, 0.009;  // a per-frame motion
-  const Matrix6d p_pp = f.PoseCovariance();
-  const Matrix6d posterior = 0.3 * p_pp;
-  f.Correct(delta, posterior, p_pp.inverse());
+  PoseVelocityFilter f = Moving(o, SomeDelta(), 0.3);
   ASSERT_GT(f.velocity().norm(), 1e-3);
   const Rigid3d m = f.cam_from_ref();
   const Vector6d xi = f.velocity();
   Matrix12d p = f.covariance();
-  p.block<3, 3>(6, 6) += o.accel_sigma_m * o.accel_sigma_m * Eigen::Matrix3d::Identity();
-  p.block<3, 3>(9, 9) += o.accel_sigma_rad * o.accel_sigma_rad * Eigen::Matrix3d::Identity();
+  p.bottomRightCorner<6, 6>() += VelocityNoise(o);
   Matrix12d big_f = Matrix12d::Identity();
   big_f.topRows<6>() = NumericTransition(m, xi);
   const Matrix12d expected = big_f * p * big_f.transpose();
@@ -93,12 +107,7 @@ TEST(PoseVelocityFilter, CorrectionIsTheKalmanUpdateOfTheFullState) {
   // Measuring the pose (H = [I 0]) with covariance R: the filter's split update (pose MAP by the
   // caller, velocity by the Gaussian conditional) equals the 12-D Kalman update.
   const StereoEkfOptions o = Options("pose_velocity");
-  PoseVelocityFilter f;
-  f.Reset(o);
-  f.Predict();
-  Vector6d first;
-  first << 0.006, 0.002, -0.004, 0.01, 0.003, -0.007;
-  f.Correct(first, 0.5 * f.PoseCovariance(), f.PoseCovariance().inverse());
+  PoseVelocityFilter f = Moving(o, (Vector6d() << 0.006, 0.002, -0.004, 0.01, 0.003, -0.007).finished(), 0.5);
   f.Predict();  // a prior with pose-velocity correlation
 
   const Matrix12d p = f.covariance();
@@ -127,19 +136,8 @@ TEST(PoseVelocityFilter, VelocityStateForgetsThePoseUncertainty) {
   // The paper's filter (eq. 10): before each prediction M_{t-1} is exact, so the predicted pose
   // covariance is the velocity's, carried through J_l, whatever the pose covariance was.
   const StereoEkfOptions o = Options("velocity");
-  PoseVelocityFilter f;
-  f.Reset(o);
-  f.Predict();
-  Vector6d delta;
-  delta << 0.008, -0.004, 0.01, 0.012, -0.006, 0.009;
-  f.Correct(delta, 0.3 * f.PoseCovariance(), f.PoseCovariance().inverse());
-  const Matrix6d p_vv =
-      f.covariance().bottomRightCorner<6, 6>() +
-      (Vector6d() << Eigen::Vector3d::Constant(o.accel_sigma_m * o.accel_sigma_m),
-       Eigen::Vector3d::Constant(o.accel_sigma_rad * o.accel_sigma_rad))
-          .finished()
-          .asDiagonal()
-          .toDenseMatrix();
+  PoseVelocityFilter f = Moving(o, SomeDelta(), 0.3);
+  const Matrix6d p_vv = f.covariance().bottomRightCorner<6, 6>() + VelocityNoise(o);
   const Matrix6d jl = LeftJacobianSE3FirstOrder(f.velocity());
   f.Predict();
   EXPECT_LT((f.PoseCovariance() - jl * p_vv * jl.transpose()).norm(), 1e-12 * p_vv.norm());

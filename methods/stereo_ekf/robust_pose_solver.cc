@@ -79,8 +79,8 @@ void RobustPoseSolver::Solve(const FeatureModel& model, const std::vector<Weight
       best_pose = pose;
     }
   }
-  if (result->inliers.size() < 2 ||
-      !RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 0,
+  // (The re-collected set replaces the consensus only when it is not smaller: still >= 2.)
+  if (!RefinePose(model, features, result->inliers.data(), static_cast<int>(result->inliers.size()), 0,
                   &best_pose, &information)) {
     return;
   }

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdint>
+#include "common/json_changes.h"
 
 namespace slt {
 namespace {
@@ -33,17 +33,7 @@ TEST(StereoEkfOptions, JsonRoundTripKeepsEveryField) {
   const nlohmann::json defaults = StereoEkfOptionsToJson(StereoEkfOptions());
   nlohmann::json changed = defaults;
   for (auto& [key, value] : changed.items()) {
-    if (value.is_boolean()) {
-      value = !value.get<bool>();
-    } else if (value.is_number_unsigned()) {
-      value = value.get<std::uint64_t>() + 41;
-    } else if (value.is_number_integer()) {
-      value = value.get<int>() + 1;
-    } else if (value.is_number_float()) {
-      const double v = value.get<double>();
-      // Fractions and probabilities stay in (0, 1); scales grow.
-      value = v > 0.0 && v < 1.0 ? 0.5 * v : (v == 0.0 ? 0.5 : 1.5 * v);
-    }
+    if (!value.is_string()) value = ChangedJsonValues(value).front();
   }
   changed["state"] = "velocity";
   changed["integration"] = "first_order";

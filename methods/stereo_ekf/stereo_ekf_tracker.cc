@@ -5,6 +5,7 @@
 #include <cmath>
 
 namespace slt {
+
 StereoEkfTracker::StereoEkfTracker(const StereoEkfOptions& options, std::unique_ptr<FeatureModel> model,
                                    nlohmann::json model_options)
     : options_(options), model_(std::move(model)), model_options_(std::move(model_options)) {
@@ -94,9 +95,12 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
   Vector6d delta = blocks_at_linearization ? Vector6d::Zero() : LogSE3(linearization * predicted.Inverse());
   NormalEquations ne;
   Vector6d delta_k = delta;
-  SpdSolver6 solver, solved;  // `solved`: the factor of the last successful solve
-  bool any_solved = false;
+  SpdSolver6 solver;
   FeatureBlock block;
+  // Anything that leaves fewer than two features or no solution makes no update at all (the
+  // caller reports the frame lost) rather than keep a step solved with features that are no
+  // longer in the set; so after the loop `solver` is the factor of the accepted solution.
+  constexpr double kNoUpdate = std::numeric_limits<double>::infinity();
   for (int k = 0; k < options_.max_iterations; ++k) {
     delta_k = delta;
     const bool reuse = k == 0 && blocks_at_linearization;
@@ -122,10 +126,6 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
       inliers_[kept++] = i;
     }
     inliers_.resize(kept);
-    // From here on, anything that leaves fewer than two features or no solution makes no update
-    // at all (the caller reports the frame lost) rather than keep a step solved with features
-    // that are no longer in the set.
-    constexpr double kNoUpdate = std::numeric_limits<double>::infinity();
     if (inliers_.size() < 2) return kNoUpdate;
     // Normal equations of the MAP cost linearised at delta_k (docs/derivations.md):
     // (H + P^-1) delta = H delta_k - g.
@@ -148,8 +148,6 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
       if (!next.allFinite()) return kNoUpdate;
     }
     delta = next;
-    solved = solver;
-    any_solved = true;
     ++counters_.update_iterations;
     // Re-linearising moves the solution by O(|step|^2): stop once the step is small against the
     // posterior uncertainty, |step|_A = sqrt(step^T A step) with A = H + P^-1 the posterior
@@ -162,10 +160,8 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     const Vector6d step = delta - delta_k;
     if (solver.SquaredNorm(step) < options_.iteration_tolerance * options_.iteration_tolerance) break;
   }
-  // Nothing solvable (degenerate information): keep the prediction.
-  if (!any_solved) return std::numeric_limits<double>::infinity();
   ++counters_.updates;
-  filter_.Correct(delta, solved.Inverse(), prior_information);
+  filter_.Correct(delta, solver.Inverse(), prior_information);
   // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
   const Vector6d step = delta - delta_k;
   posterior_costs_.clear();
