@@ -86,6 +86,8 @@ class LinearFeatureModel final : public FeatureModel {
     block->residual = f.a * (d - d_true_) + (1.0 + noise_growth_ * d.squaredNorm()) * f.noise;
     block->jacobian = f.a;  // exact at M = I without noise growth; the tests use the first update
     if (with_covariance) block->covariance = f.r;
+    block->measured_rows = f.rows;
+    block->ClearUnmeasuredRows(with_covariance);
     return true;
   }
 
@@ -93,8 +95,10 @@ class LinearFeatureModel final : public FeatureModel {
     Eigen::Matrix<double, 4, 6> a;
     Eigen::Matrix4d r;
     Eigen::Vector4d noise;
+    unsigned rows = FeatureBlock::kAllRows;
   };
   const std::vector<Feature>& features() const { return features_; }
+  Feature& mutable_feature(int index) { return features_[index]; }
   void set_noise(int index, const Eigen::Vector4d& noise) { features_[index].noise = noise; }
   // The noise is scaled by 1 + growth |Log(M)|^2: a model that is not linear after all.
   void set_noise_growth(double growth) { noise_growth_ = growth; }
@@ -268,6 +272,25 @@ TEST(FirstUpdate, ANewReferenceOnAFrameWithoutUpdateIsStillLost) {
   EXPECT_EQ(out.features_used, 0);
   EXPECT_EQ(tracker.counters().rebootstraps, 1);
   EXPECT_EQ(tracker.counters().lost_frames, 1);
+}
+
+TEST(FirstUpdate, AFeatureOfTwoRowsIsGatedOnTwoDegreesOfFreedom) {
+  // A feature measuring two rows (a line with one transfer degenerate) is gated with the
+  // chi-square quantile of 2 degrees of freedom (13.8 at 99.9 %), not of 4 (18.5). With a zero
+  // Jacobian its innovation, its cost at the solution and its whitened residual are one number.
+  for (const double cost : {12.0, 16.0}) {
+    SCOPED_TRACE(testing::Message() << "cost " << cost);
+    auto model = std::make_unique<LinearFeatureModel>(4, TrueDelta(), 5);
+    LinearFeatureModel::Feature& f = model->mutable_feature(3);
+    f.a.setZero();
+    f.r = 1e-5 * Eigen::Matrix4d::Identity();
+    f.noise = Eigen::Vector4d(std::sqrt(cost * 1e-5), 0.0, 7.0, 7.0);  // rows 2-3 are not measured
+    f.rows = 0x3u;
+    StereoEkfTracker tracker(PaperFilter(true), std::move(model), nlohmann::json::object());
+    const TrackerOutput out = TrackFirstUpdate(&tracker);
+    EXPECT_EQ(out.status, TrackingStatus::kTracking);
+    EXPECT_EQ(out.features_used, cost < 13.8155 ? 4 : 3);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values("velocity", "pose_velocity"));

@@ -18,15 +18,43 @@ const nlohmann::json kDefault = nlohmann::json::object();
 TEST(TrifocalLineEkfAccuracy, FaithfulSetting) {
   // Paper Fig. 4 reports below 0.01 m and 0.4 deg at +-2.5 px. The faithful setting (6-D
   // velocity state, one EKF update, (theta, lambda) residual, fixed R) meets the translation
-  // figure but not reliably the rotation one on this protocol: measured 0.45 deg / 4.1 mm on
-  // seeds 1-20 (0.40 / 0.60 deg on seeds 101-120 / 201-220); see docs/derivations.md. This guards
-  // that level; the default setting below is the one that beats the paper.
+  // figure and is at the rotation one but not reliably below it on this protocol: 0.356 deg on
+  // these seeds, 0.42 deg over seeds 1-200 (20-trial means 0.31-0.56 deg); see
+  // docs/derivations.md Sec. 6. So 0.4 deg is not asserted here, where it would pass by the
+  // choice of seeds; this guards the measured level. The default setting below is the one that
+  // beats the paper.
   const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kFaithful, kPaperProtocol, 20);
   EXPECT_TRUE(e.all_finite);
   EXPECT_LT(e.mean.translation_m, 0.01);  // the paper's figure
-  // Regression: measured 0.448 deg / 4.06 mm (worst trial 1.17 deg / 12.9 mm).
-  EXPECT_LT(e.mean.translation_m, 0.0055);
-  EXPECT_LT(e.mean.rotation_deg, 0.6);
+  // Regression: measured 0.356 deg / 3.23 mm (worst trial 0.68 deg / 5.1 mm; before each
+  // transfer was gated on its own, 0.448 deg / 4.06 mm).
+  EXPECT_LT(e.mean.translation_m, 0.0042);
+  EXPECT_LT(e.mean.rotation_deg, 0.46);
+}
+
+TEST(TrifocalLineEkfAccuracy, FaithfulSettingTracksPastTheReferenceRightCamera) {
+  // Seed 2 passes within 2 cm of where the reference right camera stood: T over (I_1, I'_1, I_t)
+  // degenerates for every line at once. With each transfer gated on its own, T' keeps measuring
+  // and the reference stays (measured 0.095 deg / 1.5 mm at frame 100). Dropping whole lines
+  // there forced a new reference at a poor pose, which the trajectory keeps: 1.17 deg.
+  SimulationConfig config = SimulationConfigFromJson(kPaperProtocol, "test");
+  config.seed = 2;
+  const SimulatedSequence sim = Simulate(config);
+  const Eigen::Vector3d reference_right_centre = sim.true_rig.right_from_left.Center();
+  double closest_m = 1e9;
+  for (const auto& stamped : sim.ground_truth) {
+    closest_m = std::min(closest_m, (stamped.world_from_cam.translation - reference_right_centre).norm());
+  }
+  ASSERT_LT(closest_m, 0.02) << "the premise of the test: the trajectory passes the reference right camera";
+
+  auto tracker = CreateTracker("trifocal_line_ekf", kFaithful);
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  for (size_t f = 1; f < run.outputs.size(); ++f) {
+    ASSERT_EQ(run.outputs[f].status, TrackingStatus::kTracking) << "frame " << f;
+  }
+  const PoseError e = ErrorAt(sim, run, 99);
+  EXPECT_LT(e.rotation_deg, 0.3);
+  EXPECT_LT(e.translation_m, 0.004);
 }
 
 TEST(TrifocalLineEkfAccuracy, DefaultSettingHalvesThePapersError) {

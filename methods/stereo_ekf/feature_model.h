@@ -3,10 +3,10 @@
 //
 // A model matches the features of a reference stereo pair (I_1, I'_1) with those of the
 // current pair (I_t, I'_t) and, for a pose cam_from_ref = M_t of the current left camera,
-// returns for each matched feature four residual scalars r(M_t) that vanish for noise-free
-// data at the true pose, their Jacobian with respect to a pose perturbation
-// M_t <- Exp(d) M_t (docs/conventions.md), and, when asked, their covariance under the
-// measurement noise.
+// returns for each matched feature four residual scalars r(M_t) (or fewer, see
+// FeatureBlock::measured_rows) that vanish for noise-free data at the true pose, their Jacobian
+// with respect to a pose perturbation M_t <- Exp(d) M_t (docs/conventions.md), and, when asked,
+// their covariance under the measurement noise.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +21,36 @@ struct FeatureBlock {
   Eigen::Vector4d residual;
   Eigen::Matrix<double, 4, 6> jacobian;  // d residual / d delta
   Eigen::Matrix4d covariance;            // filled only when asked for
+  // The residual rows that carry a measurement (bit i: row i). A model leaves rows out when the
+  // part of the feature they measure is degenerate at this pose while the rest is not (one of a
+  // line's two transfers, paper Sec. 4). ClearUnmeasuredRows gives those rows a zero residual
+  // and Jacobian and the covariance rows and columns of the identity: whitening then gives them
+  // no weight, and the gate compares with the quantile of Dimension() degrees of freedom.
+  static constexpr unsigned kAllRows = 0xF;
+  unsigned measured_rows = kAllRows;
+
+  int Dimension() const {
+    return static_cast<int>((measured_rows & 1u) + ((measured_rows >> 1) & 1u) + ((measured_rows >> 2) & 1u) +
+                            ((measured_rows >> 3) & 1u));
+  }
+  void ClearUnmeasuredRows(bool with_covariance) {
+    for (int row = 0; row < 4; ++row) {
+      if (measured_rows & (1u << row)) continue;
+      residual(row) = 0.0;
+      jacobian.row(row).setZero();
+      if (with_covariance) {
+        covariance.row(row).setZero();
+        covariance.col(row).setZero();
+        covariance(row, row) = 1.0;
+      }
+    }
+  }
+};
+
+// Validation-gate thresholds (eq. 20) by the number of residual rows a feature measures.
+struct GateThresholds {
+  double by_dimension[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  double operator()(const FeatureBlock& block) const { return by_dimension[block.Dimension()]; }
 };
 
 class FeatureModel {
@@ -38,8 +68,9 @@ class FeatureModel {
   // Number of measurable stereo-matched features in the frame given to the last SetCurrent: what
   // SetReference would return for it.
   virtual int CurrentStereoFeatures() const = 0;
-  // Evaluates feature `index` at `cam_from_ref`. Returns false when the feature cannot be
-  // measured at this pose (degenerate geometry); the block is then unspecified.
+  // Evaluates feature `index` at `cam_from_ref`, setting every field of `block` it is asked for
+  // (measured_rows included). Returns false when the feature cannot be measured at this pose
+  // (degenerate geometry); the block is then unspecified.
   virtual bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                         FeatureBlock* block) const = 0;
 };

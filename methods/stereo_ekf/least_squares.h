@@ -84,15 +84,16 @@ class SpdSolver6 {
 // Convenience: the inverse, false if not positive definite.
 bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse);
 
-// Squared whitened residual of feature `index` at `cam_from_ref` (false if degenerate there).
+// Squared whitened residual of feature `index` at `cam_from_ref` (false if degenerate there, or
+// measuring other rows than `feature` was whitened for).
 bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
                   const Rigid3d& cam_from_ref, double* cost);
 
 // Gauss-Newton without prior on the features `indices`, starting at *cam_from_ref, whitened with
 // each feature's covariance. On success returns true and sets *cam_from_ref and *information (the
 // Hessian J^T R^-1 J at the solution, possibly singular: a direction the features do not observe
-// is left where it started). Fails when a step diverges. iterations = 0 only evaluates the
-// information at *cam_from_ref.
+// is left where it started). Fails when a step diverges or a feature becomes degenerate (or
+// changes its measured rows). iterations = 0 only evaluates the information at *cam_from_ref.
 bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                 const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
                 Matrix6d* information);

@@ -6,14 +6,15 @@
 namespace slt {
 
 double RobustPoseSolver::Score(const FeatureModel& model, const std::vector<WeightedFeature>& features,
-                               const std::vector<int>& valid, const Rigid3d& pose, double gate,
+                               const std::vector<int>& valid, const Rigid3d& pose, const GateThresholds& gate,
                                std::vector<int>* inliers) const {
   inliers->clear();
   double score = 0.0;
   for (int i : valid) {
     double cost;
-    if (!WhitenedCost(model, features[i], i, pose, &cost) || cost >= gate) {
-      score += gate;
+    const double g = gate(features[i].block);
+    if (!WhitenedCost(model, features[i], i, pose, &cost) || cost >= g) {
+      score += g;
       continue;
     }
     score += cost;
@@ -23,8 +24,8 @@ double RobustPoseSolver::Score(const FeatureModel& model, const std::vector<Weig
 }
 
 void RobustPoseSolver::Solve(const FeatureModel& model, const std::vector<WeightedFeature>& features,
-                             const std::vector<int>& valid, const std::vector<Rigid3d>& starts, double gate,
-                             int max_iterations, double confidence, RobustSolveResult* result) {
+                             const std::vector<int>& valid, const std::vector<Rigid3d>& starts,
+                             const GateThresholds& gate, int max_iterations, double confidence, RobustSolveResult* result) {
   result->success = false;
   result->hypotheses = 0;
   result->inliers.clear();

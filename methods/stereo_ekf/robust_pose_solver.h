@@ -25,15 +25,16 @@ class RobustPoseSolver {
 
   // `valid` lists the features with a usable block and whitener; `starts` are the poses every
   // hypothesis is refined from (e.g. the prediction and the previous pose), and are themselves
-  // scored as hypotheses. `gate` is the inlier threshold on the whitened squared residual.
+  // scored as hypotheses. `gate` gives the inlier threshold on the whitened squared residual.
   void Solve(const FeatureModel& model, const std::vector<WeightedFeature>& features,
-             const std::vector<int>& valid, const std::vector<Rigid3d>& starts, double gate,
+             const std::vector<int>& valid, const std::vector<Rigid3d>& starts, const GateThresholds& gate,
              int max_iterations, double confidence, RobustSolveResult* result);
 
  private:
   // MSAC score of a pose; fills `inliers`.
   double Score(const FeatureModel& model, const std::vector<WeightedFeature>& features,
-               const std::vector<int>& valid, const Rigid3d& pose, double gate, std::vector<int>* inliers) const;
+               const std::vector<int>& valid, const Rigid3d& pose, const GateThresholds& gate,
+               std::vector<int>* inliers) const;
 
   std::mt19937_64 rng_{1};
   std::vector<int> scratch_inliers_;

@@ -63,8 +63,8 @@ double ChiSquareQuantile(double probability, int dof) {
   return x;
 }
 
-double StereoEkfOptions::GateThreshold() const {
-  return gate_threshold > 0.0 ? gate_threshold : ChiSquareQuantile(gate_probability, 4);
+double StereoEkfOptions::GateThreshold(int dimension) const {
+  return gate_threshold > 0.0 ? gate_threshold : ChiSquareQuantile(gate_probability, dimension);
 }
 
 void StereoEkfOptions::Check(const std::string& where, const std::string& path) const {

@@ -36,8 +36,9 @@ struct StereoEkfOptions {
   double iteration_tolerance = 0.1;
 
   // Validation gate (eq. 20) r^T S^-1 r < g per feature. g is the chi-square quantile of
-  // gate_probability with 4 degrees of freedom, unless gate_threshold > 0 gives g directly
-  // (the paper uses g = 0.2 with an unstated scaling of R).
+  // gate_probability with as many degrees of freedom as the feature measures residual scalars
+  // (4, or 2 for a line with one transfer degenerate), unless gate_threshold > 0 gives g
+  // directly for every feature (the paper uses g = 0.2 with an unstated scaling of R).
   double gate_probability = 0.999;
   double gate_threshold = 0.0;
 
@@ -83,7 +84,7 @@ struct StereoEkfOptions {
   // dropped by eq. 20 are not available).
   std::string count_features = "measurable";
 
-  double GateThreshold() const;  // the g in use
+  double GateThreshold(int dimension = 4) const;  // the g in use for a feature of `dimension` rows
   // Throws ConfigError "<where>: key '<path>.<field>': ...".
   void Check(const std::string& where = "stereo EKF options", const std::string& path = "") const;
 };

@@ -23,8 +23,11 @@ TEST(StereoEkfOptions, GateThresholdComesFromTheProbabilityUnlessGiven) {
   StereoEkfOptions o;
   o.gate_probability = 0.999;
   EXPECT_NEAR(o.GateThreshold(), 18.466827, 1e-5);
-  o.gate_threshold = 0.2;  // the paper's g, taken as is
+  // A line measured by one transfer only has two residual rows: chi-square(2).
+  EXPECT_NEAR(o.GateThreshold(2), 13.815511, 1e-5);
+  o.gate_threshold = 0.2;  // the paper's g, taken as is, whatever the rows
   EXPECT_DOUBLE_EQ(o.GateThreshold(), 0.2);
+  EXPECT_DOUBLE_EQ(o.GateThreshold(2), 0.2);
 }
 
 TEST(StereoEkfOptions, JsonRoundTripKeepsEveryField) {

@@ -10,7 +10,11 @@ StereoEkfTracker::StereoEkfTracker(const StereoEkfOptions& options, std::unique_
                                    nlohmann::json model_options)
     : options_(options), model_(std::move(model)), model_options_(std::move(model_options)) {
   options_.Check();
-  gate_ = options_.GateThreshold();
+  for (int d = 1; d <= 4; ++d) {
+    gate_.by_dimension[d] = options_.GateThreshold(d);
+    // Relative to chi-square(4)'s, so that 4-row costs are used as they are.
+    median_scale_[d] = ChiSquareQuantile(0.5, 4) / ChiSquareQuantile(0.5, d);
+  }
   reseed_gate_ = ChiSquareQuantile(0.999, 6);
 }
 
@@ -67,7 +71,8 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
     // whitening has just computed: a feature inside the gate by that bound is inside by eq. 20,
     // and S is only formed for the others.
     f.nis = f.whitened_residual.squaredNorm();
-    if (f.nis >= gate_) {
+    const double gate = gate_(f.block);
+    if (f.nis >= gate) {
       const Eigen::Matrix<double, 4, 6> ju = f.block.jacobian.lazyProduct(p_lower);
       Eigen::Matrix4d S = f.block.covariance;
       S.noalias() += ju.lazyProduct(ju.transpose());
@@ -79,7 +84,7 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
         f.nis = r.squaredNorm();
       }
     }
-    if (f.nis < gate_) inliers_.push_back(i);
+    if (f.nis < gate) inliers_.push_back(i);
   }
 }
 
@@ -114,10 +119,11 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
       const int i = inliers_[j];
       WeightedFeature& f = features_[i];
       if (!reuse) {
-        // Degenerate (or not finite) at this iterate: the feature leaves the update, so that it
-        // is neither counted as used nor given a zero cost.
-        if (!model_->Evaluate(i, pose, false, &block) || !block.residual.allFinite() ||
-            !block.jacobian.allFinite()) {
+        // Degenerate (or not finite) at this iterate, or measuring other rows than its whitener
+        // was built for: the feature leaves the update, so that it is neither counted as used
+        // nor given a zero or wrongly weighted cost.
+        if (!model_->Evaluate(i, pose, false, &block) || block.measured_rows != f.block.measured_rows ||
+            !block.residual.allFinite() || !block.jacobian.allFinite()) {
           continue;
         }
         f.Whiten(block.residual, block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
@@ -169,7 +175,7 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
   for (int i : inliers_) {
     const WeightedFeature& f = features_[i];
     const double q = (f.whitened_residual + f.whitened_jacobian * step).squaredNorm();
-    posterior_costs_.push_back(q);
+    posterior_costs_.push_back(q * median_scale_[f.block.Dimension()]);
     total += q;
   }
   return total;
@@ -178,7 +184,7 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
 bool StereoEkfTracker::RemovePosteriorOutliers(const Vector6d& step) {
   auto outside = [&](int i) {
     const WeightedFeature& f = features_[i];
-    return !((f.whitened_residual + f.whitened_jacobian * step).squaredNorm() < gate_);  // NaN: outside
+    return !((f.whitened_residual + f.whitened_jacobian * step).squaredNorm() < gate_(f.block));  // NaN: outside
   };
   // A few features far off the solution are outliers; most of them are not -- then the noise
   // model is too tight (or the model does not fit, e.g. a wrong focal length) and dropping
@@ -191,20 +197,28 @@ bool StereoEkfTracker::RemovePosteriorOutliers(const Vector6d& step) {
 
 void StereoEkfTracker::AdaptNoiseScale() {
   // Robust scale: the median per-feature posterior cost over the median of chi-square(4)
-  // (3.357), corrected for the six degrees of freedom the pose absorbs. The median ignores the
+  // (3.357; a feature of fewer rows has its cost scaled to that median by IteratedUpdate),
+  // corrected for the six degrees of freedom the pose absorbs. The median ignores the
   // few outliers that slip through the gate. The scale drops fast (noise-free data) and rises
   // slowly, so that a filter going wrong is not hidden by an inflated noise model.
   const int n = static_cast<int>(posterior_costs_.size());
   if (!options_.adaptive_noise || n < 3) return;
   auto middle = posterior_costs_.begin() + n / 2;
   std::nth_element(posterior_costs_.begin(), middle, posterior_costs_.end());
-  const double dof_correction = (4.0 * n) / std::max(1.0, 4.0 * n - 6.0);
+  const double rows = MeasuredRows();
+  const double dof_correction = rows / std::max(1.0, rows - 6.0);
   const double ratio = *middle * dof_correction / 3.357;
   const double a = ratio < 1.0 ? options_.noise_adaptation_rate : 0.2 * options_.noise_adaptation_rate;
   noise_scale_sq_ *= (1.0 - a) + a * ratio;
   const double lo = options_.min_noise_scale * options_.min_noise_scale;
   const double hi = options_.max_noise_scale * options_.max_noise_scale;
   noise_scale_sq_ = std::min(hi, std::max(lo, noise_scale_sq_));
+}
+
+int StereoEkfTracker::MeasuredRows() const {
+  int rows = 0;
+  for (int i : inliers_) rows += features_[i].block.Dimension();
+  return rows;
 }
 
 bool StereoEkfTracker::MaybeRebootstrap(const StereoFrame& frame, int used) {
@@ -300,7 +314,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     // Healthy when the posterior cost is plausible for its degrees of freedom: below
     // max_normalized_cost per degree of freedom, and never below the 99.9 % chi-square quantile
     // (Wilson-Hilferty), which matters for few features.
-    const double dof = std::max(1.0, 4.0 * used - 6.0);
+    const double dof = std::max(1.0, MeasuredRows() - 6.0);
     const double h = 2.0 / (9.0 * dof);
     const double chi2_999 = dof * std::pow(1.0 - h + 3.09 * std::sqrt(h), 3.0);
     healthy_ = cost <= std::max(options_.max_normalized_cost * dof, chi2_999);

@@ -64,13 +64,17 @@ class StereoEkfTracker : public PoseTracker {
   // Drops the inliers whose linearised cost after `step` exceeds the gate; true if any.
   bool RemovePosteriorOutliers(const Vector6d& step);
   void AdaptNoiseScale();
+  // Residual scalars measured by the features of this frame's update (4 per feature, fewer for
+  // a feature with rows left out).
+  int MeasuredRows() const;
   // `used` = features that entered this frame's update.
   bool MaybeRebootstrap(const StereoFrame& frame, int used);
 
   StereoEkfOptions options_;
   std::unique_ptr<FeatureModel> model_;
   nlohmann::json model_options_;
-  double gate_ = 0.0;
+  GateThresholds gate_;
+  double median_scale_[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // median of chi-square(4) / chi-square(d)
   double reseed_gate_ = 0.0;  // chi-square, 6 dof
 
   bool started_ = false;

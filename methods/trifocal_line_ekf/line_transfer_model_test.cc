@@ -168,6 +168,81 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   EXPECT_EQ(strict.SetReference(scene.Frame(Rigid3d())), 0);
 }
 
+// The paper's direction gates each transfer on its own (Sec. 4): when one degenerates the other
+// still measures the line, in two rows of the block.
+class OneTransferDegenerate : public ::testing::TestWithParam<std::string> {};
+
+void ExpectOnlyRowsMeasured(const LineTransferModel& model, int feature, const Rigid3d& truth, unsigned rows) {
+  FeatureBlock block;
+  ASSERT_TRUE(model.Evaluate(feature, truth, true, &block));
+  EXPECT_EQ(block.measured_rows, rows);
+  EXPECT_EQ(block.Dimension(), 2);
+  EXPECT_LT(block.residual.norm(), 1e-9);  // noise-free data at the truth
+  // Away from the truth: the measured rows follow central differences and do not vanish; the
+  // others carry nothing (zero residual and Jacobian, unit variance, no correlation).
+  const Rigid3d at = ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+  ASSERT_TRUE(model.Evaluate(feature, at, true, &block));
+  ASSERT_EQ(block.measured_rows, rows);
+  const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
+    FeatureBlock b;
+    EXPECT_TRUE(model.Evaluate(feature, ExpSE3(d) * at, false, &b));
+    return b.residual;
+  };
+  const Eigen::Matrix<double, 4, 6> numeric = CentralDifferenceJacobian<4, 6>(f, Vector6d::Zero());
+  EXPECT_LT((numeric - block.jacobian).norm(), 1e-6 * (1.0 + numeric.norm()));
+  for (int row = 0; row < 4; ++row) {
+    if (rows & (1u << row)) {
+      EXPECT_GT(std::abs(block.residual(row)) + block.jacobian.row(row).norm(), 1e-3) << "row " << row;
+      EXPECT_GT(block.covariance(row, row), 0.0);
+    } else {
+      EXPECT_EQ(block.residual(row), 0.0) << "row " << row;
+      EXPECT_EQ(block.jacobian.row(row).norm(), 0.0) << "row " << row;
+      Eigen::Vector4d unit = Eigen::Vector4d::Unit(row);
+      EXPECT_EQ((block.covariance.row(row).transpose() - unit).norm(), 0.0) << "row " << row;
+      EXPECT_EQ((block.covariance.col(row) - unit).norm(), 0.0) << "row " << row;
+    }
+  }
+}
+
+TEST_P(OneTransferDegenerate, CurrentLeftCameraAtTheReferenceRightCamera) {
+  // T over (I_1, I'_1, I_t) then has two views with the same centre: every line lies in an
+  // epipolar plane of them and T degenerates for all; T' (rows 2-3) still measures each line.
+  TinyScene scene;
+  LineTransferOptions options = Options("current_to_reference", "theta_lambda");
+  options.noise = GetParam();
+  options.min_plane_angle_deg = 3.0;
+  LineTransferModel model(options);
+  model.Reset(scene.rig);
+  const Rigid3d truth = scene.rig.right_from_left;
+  ASSERT_EQ(model.SetReference(scene.Frame(Rigid3d())), 4);
+  ASSERT_EQ(model.SetCurrent(scene.Frame(truth)), 4);
+  for (int i = 0; i < model.NumFeatures(); ++i) {
+    SCOPED_TRACE(i);
+    ExpectOnlyRowsMeasured(model, i, truth, 0xCu);
+  }
+}
+
+TEST_P(OneTransferDegenerate, LineHorizontalInTheCurrentPairOnly) {
+  // Rolled by 30 deg, the current pair sees the line horizontal (in its epipolar plane): T'
+  // (rows 2-3), which starts from the current pair, is out; T (reference right + current left)
+  // still measures it.
+  const Rigid3d truth = ExpSE3((Vector6d() << 0.01, -0.005, 0.0, 0.0, 0.0, 30.0 * M_PI / 180.0).finished());
+  const Rigid3d ref_from_cam = truth.Inverse();
+  TinyScene scene;
+  scene.lines = {{ref_from_cam * Eigen::Vector3d(-0.1, 0.03, 0.5), ref_from_cam * Eigen::Vector3d(0.1, 0.03, 0.5)}};
+  LineTransferOptions options = Options("current_to_reference", "theta_lambda");
+  options.noise = GetParam();
+  options.min_epipolar_angle_deg = 3.0;
+  options.min_plane_angle_deg = 3.0;
+  LineTransferModel model(options);
+  model.Reset(scene.rig);
+  ASSERT_EQ(model.SetReference(scene.Frame(Rigid3d())), 1);  // tilted by 30 deg there: measurable
+  ASSERT_EQ(model.SetCurrent(scene.Frame(truth)), 1);
+  ExpectOnlyRowsMeasured(model, 0, truth, 0x3u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Noise, OneTransferDegenerate, ::testing::Values("fixed", "propagated"));
+
 TEST(LineTransferModel, OptionErrorsNameTheKey) {
   const auto j = nlohmann::json::parse(R"({"residual": "angle"})");
   JsonReader r(j, "cfg.json", "measurement");

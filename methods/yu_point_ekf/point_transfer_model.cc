@@ -269,6 +269,7 @@ bool PointTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool w
   const ReferencePoint& ref = reference_points_[match.reference_point];
   const StereoLinePoints& cur = current_[match.current_line];
   const Rigid3d& e = rig_.right_from_left;
+  block->measured_rows = FeatureBlock::kAllRows;
   // X in the current left and right cameras: the plane form of the two point transfers.
   const Eigen::Vector3d x_left = cam_from_ref * ref.point;
   const Eigen::Vector3d x_right = e * x_left;
