@@ -86,7 +86,7 @@ class LinearFeatureModel final : public FeatureModel {
     block->residual = f.a * (d - d_true_) + (1.0 + noise_growth_ * d.squaredNorm()) * f.noise;
     block->jacobian = f.a;  // exact at M = I without noise growth; the tests use the first update
     if (with_covariance) block->covariance = f.r;
-    block->measured_rows = f.rows;
+    block->measured_rows = f.rows_away != 0 && d.norm() > 1e-12 ? f.rows_away : f.rows;
     block->ClearUnmeasuredRows(with_covariance);
     return true;
   }
@@ -96,6 +96,7 @@ class LinearFeatureModel final : public FeatureModel {
     Eigen::Matrix4d r;
     Eigen::Vector4d noise;
     unsigned rows = FeatureBlock::kAllRows;
+    unsigned rows_away = 0;  // if set, the rows measured away from the prediction (M = I)
   };
   const std::vector<Feature>& features() const { return features_; }
   Feature& mutable_feature(int index) { return features_[index]; }
@@ -290,6 +291,78 @@ TEST(FirstUpdate, AFeatureOfTwoRowsIsGatedOnTwoDegreesOfFreedom) {
     const TrackerOutput out = TrackFirstUpdate(&tracker);
     EXPECT_EQ(out.status, TrackingStatus::kTracking);
     EXPECT_EQ(out.features_used, cost < 13.8155 ? 4 : 3);
+  }
+}
+
+TEST(FirstUpdate, AFeatureWhoseRowsChangeAtTheIterate) {
+  // Feature 3 measures rows 2-3 at the prediction and all four away from it (a line whose
+  // transfer T becomes usable): it stays in the update on the rows it was whitened for, and the
+  // result is that of a feature measuring rows 2-3 throughout. Measuring all four at the
+  // prediction and rows 2-3 away from it (T lost), it leaves the update at the second iteration.
+  StereoEkfOptions options = PaperFilter(true);
+  options.max_iterations = 3;
+  options.iteration_tolerance = 0.0;
+  auto run = [&](unsigned rows, unsigned rows_away, Rigid3d* pose) {
+    auto model = std::make_unique<LinearFeatureModel>(4, TrueDelta(), 5);
+    model->mutable_feature(3).rows = rows;
+    model->mutable_feature(3).rows_away = rows_away;
+    StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
+    const TrackerOutput out = TrackFirstUpdate(&tracker);
+    EXPECT_EQ(out.status, TrackingStatus::kTracking);
+    *pose = tracker.filter().cam_from_ref();
+    return out.features_used;
+  };
+  Rigid3d gaining, fixed, losing, all;
+  EXPECT_EQ(run(0xCu, FeatureBlock::kAllRows, &gaining), 4);
+  EXPECT_EQ(run(0xCu, 0, &fixed), 4);
+  EXPECT_LT(LogSE3(gaining * fixed.Inverse()).norm(), 1e-12);
+  EXPECT_EQ(run(FeatureBlock::kAllRows, 0xCu, &losing), 3);
+  EXPECT_EQ(run(FeatureBlock::kAllRows, 0, &all), 4);
+}
+
+// Four features of two rows with a zero Jacobian: their posterior costs are their whitened
+// residuals, `costs`, whatever the update does.
+std::unique_ptr<LinearFeatureModel> TwoRowFeatures(const std::vector<double>& costs) {
+  auto model = std::make_unique<LinearFeatureModel>(static_cast<int>(costs.size()), TrueDelta(), 5);
+  for (size_t i = 0; i < costs.size(); ++i) {
+    LinearFeatureModel::Feature& f = model->mutable_feature(static_cast<int>(i));
+    f.a.setZero();
+    f.r = 1e-5 * Eigen::Matrix4d::Identity();
+    f.noise = Eigen::Vector4d(std::sqrt(costs[i] * 1e-5), 0.0, 0.0, 0.0);
+    f.rows = 0x3u;
+  }
+  return model;
+}
+
+TEST(FirstUpdate, NoiseAdaptationCountsTheRowsMeasured) {
+  // rho = median cost scaled from chi-square(2) to chi-square(4) by the ratio of their medians,
+  // over 3.357 (the latter's median as the tracker rounds it), times m / (m - 6) for the m = 10
+  // rows measured (docs/derivations.md Sec. 5); then s^2 = (1 - a) + a rho, a = 0.2 x 0.3 when
+  // rho > 1.
+  StereoEkfOptions options = PaperFilter(true);
+  options.adaptive_noise = true;
+  const std::vector<double> costs = {1.0, 2.0, 3.0, 4.0, 5.0};
+  StereoEkfTracker tracker(options, TwoRowFeatures(costs), nlohmann::json::object());
+  ASSERT_EQ(TrackFirstUpdate(&tracker).features_used, 5);
+  const double rho = 3.0 * (ChiSquareQuantile(0.5, 4) / ChiSquareQuantile(0.5, 2)) / 3.357 * 10.0 / 4.0;
+  const double a = 0.2 * options.noise_adaptation_rate;
+  EXPECT_NEAR(tracker.noise_scale() * tracker.noise_scale(), (1.0 - a) + a * rho, 1e-9);
+}
+
+TEST(FirstUpdate, HealthCountsTheRowsMeasured) {
+  // Total posterior cost 25 over 5 features of two rows: 10 rows, 4 degrees of freedom, above
+  // their 99.9 % quantile (18.5), so the filter is unhealthy and the next frame runs RANSAC; with
+  // 4 rows per feature (14 degrees of freedom, 36.1) it would have passed. Cost 10 is healthy.
+  for (const double per_feature : {5.0, 2.0}) {
+    SCOPED_TRACE(testing::Message() << "cost " << 5 * per_feature);
+    StereoEkfOptions options = PaperFilter(true);
+    options.robust = true;
+    options.robust_start_frames = 0;
+    StereoEkfTracker tracker(options, TwoRowFeatures(std::vector<double>(5, per_feature)), nlohmann::json::object());
+    ASSERT_EQ(TrackFirstUpdate(&tracker).features_used, 5);
+    EXPECT_EQ(tracker.counters().robust_solves, 0);
+    tracker.Track(StereoFrame{2.0 / 30.0, {}, {}});
+    EXPECT_EQ(tracker.counters().robust_solves, per_feature > 4.0 ? 1 : 0);
   }
 }
 

@@ -45,6 +45,19 @@ struct FeatureBlock {
       }
     }
   }
+  // Makes this block (evaluated at another pose than the whitener of the feature it belongs to)
+  // measure exactly `rows`, the rows that whitener was built for: possible when it measures all
+  // of them (the extra rows are cleared); false when it lost one. (A lost row cannot be dropped
+  // from a whitener with correlated rows: the remaining rows would get their conditional, not
+  // their marginal, variance.)
+  bool RestrictTo(unsigned rows) {
+    if ((measured_rows & rows) != rows) return false;
+    if (measured_rows != rows) {
+      measured_rows = rows;
+      ClearUnmeasuredRows(false);
+    }
+    return true;
+  }
 };
 
 // Validation-gate thresholds (eq. 20) by the number of residual rows a feature measures.
@@ -70,7 +83,8 @@ class FeatureModel {
   virtual int CurrentStereoFeatures() const = 0;
   // Evaluates feature `index` at `cam_from_ref`, setting every field of `block` it is asked for
   // (measured_rows included). Returns false when the feature cannot be measured at this pose
-  // (degenerate geometry); the block is then unspecified.
+  // (degenerate geometry); the block is then unspecified. A block with no measured row counts as
+  // not measurable.
   virtual bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                         FeatureBlock* block) const = 0;
 };

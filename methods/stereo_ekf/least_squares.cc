@@ -115,7 +115,7 @@ double WeightedFeature::WhitenedSquaredNorm(const Eigen::Vector4d& residual) con
 bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
                   const Rigid3d& cam_from_ref, double* cost) {
   FeatureBlock block;
-  if (!model.Evaluate(index, cam_from_ref, false, &block) || block.measured_rows != feature.block.measured_rows) {
+  if (!model.Evaluate(index, cam_from_ref, false, &block) || !block.RestrictTo(feature.block.measured_rows)) {
     return false;
   }
   *cost = feature.WhitenedSquaredNorm(block.residual);
@@ -132,7 +132,7 @@ bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& f
     ne = NormalEquations();
     for (int k = 0; k < count; ++k) {
       const int i = indices[k];
-      if (!model.Evaluate(i, pose, false, &block) || block.measured_rows != features[i].block.measured_rows) {
+      if (!model.Evaluate(i, pose, false, &block) || !block.RestrictTo(features[i].block.measured_rows)) {
         return false;
       }
       Eigen::Vector4d rw;

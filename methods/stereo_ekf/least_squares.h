@@ -85,7 +85,7 @@ class SpdSolver6 {
 bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse);
 
 // Squared whitened residual of feature `index` at `cam_from_ref` (false if degenerate there, or
-// measuring other rows than `feature` was whitened for).
+// no longer measuring every row `feature` was whitened for).
 bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
                   const Rigid3d& cam_from_ref, double* cost);
 
@@ -93,7 +93,7 @@ bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int
 // each feature's covariance. On success returns true and sets *cam_from_ref and *information (the
 // Hessian J^T R^-1 J at the solution, possibly singular: a direction the features do not observe
 // is left where it started). Fails when a step diverges or a feature becomes degenerate (or
-// changes its measured rows). iterations = 0 only evaluates the information at *cam_from_ref.
+// loses one of its measured rows). iterations = 0 only evaluates the information at *cam_from_ref.
 bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                 const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
                 Matrix6d* information);

@@ -5,6 +5,9 @@
 #include <Eigen/Cholesky>
 #include <limits>
 #include <random>
+#include <vector>
+
+#include "geometry/se3.h"
 
 namespace slt {
 namespace {
@@ -62,6 +65,106 @@ TEST(InvertSpd6, InvertsPositiveDefiniteMatrices) {
   Matrix6d inverse;
   ASSERT_TRUE(InvertSpd6(a, &inverse));
   EXPECT_LT((a * inverse - Matrix6d::Identity()).norm(), 1e-9);
+}
+
+TEST(FeatureBlock, RestrictToKeepsASupersetAndRejectsALostRow) {
+  FeatureBlock block;
+  block.residual << 1.0, 2.0, 3.0, 4.0;
+  block.jacobian.setOnes();
+  block.measured_rows = FeatureBlock::kAllRows;
+  EXPECT_TRUE(block.RestrictTo(0xCu));  // rows 2-3 of a whitener built for them
+  EXPECT_EQ(block.measured_rows, 0xCu);
+  EXPECT_EQ(block.Dimension(), 2);
+  EXPECT_EQ(block.residual, Eigen::Vector4d(0.0, 0.0, 3.0, 4.0));
+  EXPECT_EQ(block.jacobian.topRows<2>().norm(), 0.0);
+  EXPECT_EQ(block.jacobian.bottomRows<2>().sum(), 12.0);
+  EXPECT_FALSE(block.RestrictTo(0x3u));  // rows 0-1 are no longer measured
+  EXPECT_FALSE(block.RestrictTo(FeatureBlock::kAllRows));
+}
+
+// Residuals linear in the pose's logarithm, r = A (Log(M) - d0), measuring `rows_at_start` at
+// M = I and `rows_away` elsewhere: a feature one of whose parts degenerates with the pose.
+class RowsByPoseModel final : public FeatureModel {
+ public:
+  RowsByPoseModel(unsigned rows_at_start, unsigned rows_away) : rows_at_start_(rows_at_start), rows_away_(rows_away) {
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> normal;
+    for (int k = 0; k < 3; ++k) {
+      a_[k] = Eigen::Matrix<double, 4, 6>::NullaryExpr([&]() { return normal(rng); });
+    }
+    d0_ << 0.01, -0.02, 0.015, 0.02, 0.01, -0.01;
+  }
+  void Reset(const StereoRig&) override {}
+  int SetReference(const StereoFrame&) override { return 3; }
+  int SetCurrent(const StereoFrame&) override { return 3; }
+  int NumFeatures() const override { return 3; }
+  int CurrentStereoFeatures() const override { return 3; }
+  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance, FeatureBlock* block) const override {
+    const Vector6d d = LogSE3(cam_from_ref);
+    block->residual = a_[index] * (d - d0_);
+    block->jacobian = a_[index];
+    if (with_covariance) block->covariance = 0.01 * Eigen::Matrix4d::Identity();
+    // Feature 2 keeps all its rows everywhere.
+    block->measured_rows = index == 2 ? FeatureBlock::kAllRows : d.norm() < 1e-12 ? rows_at_start_ : rows_away_;
+    block->ClearUnmeasuredRows(with_covariance);
+    return true;
+  }
+  Rigid3d Truth() const { return ExpSE3(d0_); }
+
+ private:
+  unsigned rows_at_start_, rows_away_;
+  Eigen::Matrix<double, 4, 6> a_[3];
+  Vector6d d0_;
+};
+
+std::vector<WeightedFeature> WhitenedAtStart(const FeatureModel& model) {
+  std::vector<WeightedFeature> features(model.NumFeatures());
+  for (int i = 0; i < model.NumFeatures(); ++i) {
+    EXPECT_TRUE(model.Evaluate(i, Rigid3d(), true, &features[i].block));
+    EXPECT_TRUE(features[i].FactorCovariance());
+  }
+  return features;
+}
+
+TEST(RowsThatChangeWithThePose, AFeatureGainingRowsKeepsThoseItWasWhitenedFor) {
+  // Whitened on rows 2-3 at the start, all four measured away from it: the cost and the solve
+  // use rows 2-3 only, exactly as for a feature that never gains the rows.
+  const RowsByPoseModel gaining(0xCu, FeatureBlock::kAllRows), fixed(0xCu, 0xCu);
+  const std::vector<WeightedFeature> features = WhitenedAtStart(gaining);
+  const Rigid3d away = ExpSE3((Vector6d() << 0.003, 0.001, -0.002, 0.004, 0.0, 0.002).finished());
+  double cost_gaining, cost_fixed;
+  ASSERT_TRUE(WhitenedCost(gaining, features[0], 0, away, &cost_gaining));
+  ASSERT_TRUE(WhitenedCost(fixed, features[0], 0, away, &cost_fixed));
+  EXPECT_GT(cost_fixed, 0.0);
+  EXPECT_EQ(cost_gaining, cost_fixed);
+
+  const int indices[3] = {0, 1, 2};
+  Rigid3d pose_gaining, pose_fixed;
+  Matrix6d information_gaining, information_fixed;
+  ASSERT_TRUE(RefinePose(gaining, features, indices, 3, 10, &pose_gaining, &information_gaining));
+  ASSERT_TRUE(RefinePose(fixed, features, indices, 3, 10, &pose_fixed, &information_fixed));
+  EXPECT_LT(LogSE3(pose_gaining * gaining.Truth().Inverse()).norm(), 1e-9);  // noise-free: exact
+  EXPECT_LT(LogSE3(pose_gaining * pose_fixed.Inverse()).norm(), 1e-12);
+  EXPECT_LT((information_gaining - information_fixed).norm(), 1e-9 * information_fixed.norm());
+}
+
+TEST(RowsThatChangeWithThePose, AFeatureLosingARowCannotBeWhitenedThere) {
+  // Whitened on all four rows at the start, rows 2-3 only away from it: no cost there, and a
+  // solve that moves away fails rather than whiten it with a factor of other rows.
+  const RowsByPoseModel losing(FeatureBlock::kAllRows, 0xCu);
+  const std::vector<WeightedFeature> features = WhitenedAtStart(losing);
+  const Rigid3d away = ExpSE3((Vector6d() << 0.003, 0.001, -0.002, 0.004, 0.0, 0.002).finished());
+  double cost = 0.0;
+  EXPECT_TRUE(WhitenedCost(losing, features[2], 2, away, &cost));  // feature 2 keeps its rows
+  EXPECT_FALSE(WhitenedCost(losing, features[0], 0, away, &cost));
+  const int indices[3] = {0, 1, 2};
+  Rigid3d pose;
+  Matrix6d information;
+  EXPECT_FALSE(RefinePose(losing, features, indices, 3, 10, &pose, &information));
+  // Control: the same features keeping their rows solve.
+  const RowsByPoseModel keeping(FeatureBlock::kAllRows, FeatureBlock::kAllRows);
+  pose = Rigid3d();
+  EXPECT_TRUE(RefinePose(keeping, WhitenedAtStart(keeping), indices, 3, 10, &pose, &information));
 }
 
 }  // namespace

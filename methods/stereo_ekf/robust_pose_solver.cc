@@ -1,5 +1,6 @@
 #include "methods/stereo_ekf/robust_pose_solver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -47,17 +48,27 @@ void RobustPoseSolver::Solve(const FeatureModel& model, const std::vector<Weight
 
   std::uniform_int_distribution<int> pick(0, n - 1);
   int needed = max_iterations;
+  int largest_sample = 2;
   Matrix6d information;
   for (int iteration = 0; iteration < needed && iteration < max_iterations; ++iteration) {
-    int sample[2] = {valid[pick(rng_)], valid[pick(rng_)]};
-    while (sample[1] == sample[0]) sample[1] = valid[pick(rng_)];
+    // A minimal sample: distinct features until they measure the pose's 6 degrees of freedom --
+    // two of 4 rows, three when lines are measured by one transfer only (2 rows each).
+    int sample[kMaxSample];
+    int count = 0, rows = 0;
+    while (count < kMaxSample && count < n && (count < 2 || rows < 6)) {
+      const int candidate = valid[pick(rng_)];
+      if (std::find(sample, sample + count, candidate) != sample + count) continue;
+      sample[count++] = candidate;
+      rows += features[candidate].block.Dimension();
+    }
+    largest_sample = std::max(largest_sample, count);
     for (const Rigid3d& start : starts) {
       Rigid3d pose = start;
-      if (RefinePose(model, features, sample, 2, 6, &pose, &information)) consider(pose);
+      if (RefinePose(model, features, sample, count, 6, &pose, &information)) consider(pose);
     }
-    // Adaptive stopping: enough samples to draw an all-inlier pair with `confidence`.
+    // Adaptive stopping: enough samples to draw an all-inlier sample with `confidence`.
     const double w = static_cast<double>(result->inliers.size()) / n;
-    const double p_good = w * w;
+    const double p_good = std::pow(w, largest_sample);
     if (p_good >= 1.0 - 1e-12) break;
     if (p_good > 0.0) {
       // Clamped in double: with many features and one inlier the count exceeds int.

@@ -1,5 +1,5 @@
 // A per-frame robust pose solve: RANSAC over pairs of features (two features, 8 scalars,
-// over-determine the 6-dof pose, paper Sec. 3.3), each hypothesis refined by Gauss-Newton from
+// over-determine the 6-dof pose, paper Sec. 3.3; more when features measure fewer rows), each hypothesis refined by Gauss-Newton from
 // the filter's prediction and scored with a truncated (MSAC) cost; the best is refined on its
 // inliers. Used to seed the EKF when its prior is weak or when it has gone wrong.
 #pragma once
@@ -31,6 +31,8 @@ class RobustPoseSolver {
              int max_iterations, double confidence, RobustSolveResult* result);
 
  private:
+  static constexpr int kMaxSample = 6;  // features per hypothesis (6 rows of one each)
+
   // MSAC score of a pose; fills `inliers`.
   double Score(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                const std::vector<int>& valid, const Rigid3d& pose, const GateThresholds& gate,

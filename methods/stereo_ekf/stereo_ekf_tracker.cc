@@ -60,8 +60,8 @@ void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
   }
   for (int i = 0; i < n; ++i) {
     WeightedFeature& f = features_[i];
-    f.valid = model_->Evaluate(i, predicted, true, &f.block) && f.block.residual.allFinite() &&
-              f.block.jacobian.allFinite();
+    f.valid = model_->Evaluate(i, predicted, true, &f.block) && f.block.Dimension() > 0 &&
+              f.block.residual.allFinite() && f.block.jacobian.allFinite();
     if (!f.valid) continue;
     f.block.covariance *= noise_scale_sq_;
     if (!(f.valid = f.FactorCovariance())) continue;
@@ -119,10 +119,10 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
       const int i = inliers_[j];
       WeightedFeature& f = features_[i];
       if (!reuse) {
-        // Degenerate (or not finite) at this iterate, or measuring other rows than its whitener
-        // was built for: the feature leaves the update, so that it is neither counted as used
-        // nor given a zero or wrongly weighted cost.
-        if (!model_->Evaluate(i, pose, false, &block) || block.measured_rows != f.block.measured_rows ||
+        // Degenerate (or not finite) at this iterate, or no longer measuring every row its
+        // whitener was built for: the feature leaves the update, so that it is neither counted
+        // as used nor given a zero or wrongly weighted cost.
+        if (!model_->Evaluate(i, pose, false, &block) || !block.RestrictTo(f.block.measured_rows) ||
             !block.residual.allFinite() || !block.jacobian.allFinite()) {
           continue;
         }
