@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <bitset>
 #include <nlohmann/json.hpp>
 
 #include "dataset/stereo_sequence.h"
@@ -29,11 +30,9 @@ struct FeatureBlock {
   static constexpr unsigned kAllRows = 0xF;
   unsigned measured_rows = kAllRows;
 
-  int Dimension() const {
-    return static_cast<int>((measured_rows & 1u) + ((measured_rows >> 1) & 1u) + ((measured_rows >> 2) & 1u) +
-                            ((measured_rows >> 3) & 1u));
-  }
+  int Dimension() const { return static_cast<int>(std::bitset<4>(measured_rows).count()); }
   void ClearUnmeasuredRows(bool with_covariance) {
+    if (measured_rows == kAllRows) return;
     for (int row = 0; row < 4; ++row) {
       if (measured_rows & (1u << row)) continue;
       residual(row) = 0.0;

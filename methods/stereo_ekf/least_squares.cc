@@ -112,12 +112,16 @@ double WeightedFeature::WhitenedSquaredNorm(const Eigen::Vector4d& residual) con
   return b.squaredNorm();
 }
 
+bool EvaluateForWhitener(const FeatureModel& model, const WeightedFeature& feature, int index,
+                         const Rigid3d& cam_from_ref, FeatureBlock* block) {
+  return model.Evaluate(index, cam_from_ref, false, block) && block->RestrictTo(feature.block.measured_rows) &&
+         block->residual.allFinite() && block->jacobian.allFinite();
+}
+
 bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
                   const Rigid3d& cam_from_ref, double* cost) {
   FeatureBlock block;
-  if (!model.Evaluate(index, cam_from_ref, false, &block) || !block.RestrictTo(feature.block.measured_rows)) {
-    return false;
-  }
+  if (!EvaluateForWhitener(model, feature, index, cam_from_ref, &block)) return false;
   *cost = feature.WhitenedSquaredNorm(block.residual);
   return std::isfinite(*cost);
 }
@@ -132,9 +136,7 @@ bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& f
     ne = NormalEquations();
     for (int k = 0; k < count; ++k) {
       const int i = indices[k];
-      if (!model.Evaluate(i, pose, false, &block) || !block.RestrictTo(features[i].block.measured_rows)) {
-        return false;
-      }
+      if (!EvaluateForWhitener(model, features[i], i, pose, &block)) return false;
       Eigen::Vector4d rw;
       Eigen::Matrix<double, 4, 6> jw;
       features[i].Whiten(block.residual, block.jacobian, &rw, &jw);

@@ -84,8 +84,14 @@ class SpdSolver6 {
 // Convenience: the inverse, false if not positive definite.
 bool InvertSpd6(const Matrix6d& a, Matrix6d* inverse);
 
-// Squared whitened residual of feature `index` at `cam_from_ref` (false if degenerate there, or
-// no longer measuring every row `feature` was whitened for).
+// Evaluates feature `index` at `cam_from_ref` (another pose than the one `feature` was whitened
+// at) into `block`, on the rows `feature`'s whitener was built for. False when it is degenerate
+// or not finite there, or no longer measures one of those rows (FeatureBlock::RestrictTo).
+bool EvaluateForWhitener(const FeatureModel& model, const WeightedFeature& feature, int index,
+                         const Rigid3d& cam_from_ref, FeatureBlock* block);
+
+// Squared whitened residual of feature `index` at `cam_from_ref` (false where
+// EvaluateForWhitener is).
 bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int index,
                   const Rigid3d& cam_from_ref, double* cost);
 

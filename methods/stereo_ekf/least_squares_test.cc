@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/se3.h"
+#include "methods/stereo_ekf/linear_test_model.h"
 
 namespace slt {
 namespace {
@@ -82,40 +83,16 @@ TEST(FeatureBlock, RestrictToKeepsASupersetAndRejectsALostRow) {
   EXPECT_FALSE(block.RestrictTo(FeatureBlock::kAllRows));
 }
 
-// Residuals linear in the pose's logarithm, r = A (Log(M) - d0), measuring `rows_at_start` at
-// M = I and `rows_away` elsewhere: a feature one of whose parts degenerates with the pose.
-class RowsByPoseModel final : public FeatureModel {
- public:
-  RowsByPoseModel(unsigned rows_at_start, unsigned rows_away) : rows_at_start_(rows_at_start), rows_away_(rows_away) {
-    std::mt19937_64 rng(3);
-    std::normal_distribution<double> normal;
-    for (int k = 0; k < 3; ++k) {
-      a_[k] = Eigen::Matrix<double, 4, 6>::NullaryExpr([&]() { return normal(rng); });
-    }
-    d0_ << 0.01, -0.02, 0.015, 0.02, 0.01, -0.01;
+// Three features measuring `rows_at_start` at M = I and `rows_away` elsewhere; feature 2 keeps
+// all its rows everywhere.
+LinearTestModel RowsByPoseModel(unsigned rows_at_start, unsigned rows_away) {
+  LinearTestModel model(3, 3, 0.01);
+  for (int i = 0; i < 2; ++i) {
+    model.feature(i).rows_at_start = rows_at_start;
+    model.feature(i).rows_away = rows_away;
   }
-  void Reset(const StereoRig&) override {}
-  int SetReference(const StereoFrame&) override { return 3; }
-  int SetCurrent(const StereoFrame&) override { return 3; }
-  int NumFeatures() const override { return 3; }
-  int CurrentStereoFeatures() const override { return 3; }
-  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance, FeatureBlock* block) const override {
-    const Vector6d d = LogSE3(cam_from_ref);
-    block->residual = a_[index] * (d - d0_);
-    block->jacobian = a_[index];
-    if (with_covariance) block->covariance = 0.01 * Eigen::Matrix4d::Identity();
-    // Feature 2 keeps all its rows everywhere.
-    block->measured_rows = index == 2 ? FeatureBlock::kAllRows : d.norm() < 1e-12 ? rows_at_start_ : rows_away_;
-    block->ClearUnmeasuredRows(with_covariance);
-    return true;
-  }
-  Rigid3d Truth() const { return ExpSE3(d0_); }
-
- private:
-  unsigned rows_at_start_, rows_away_;
-  Eigen::Matrix<double, 4, 6> a_[3];
-  Vector6d d0_;
-};
+  return model;
+}
 
 std::vector<WeightedFeature> WhitenedAtStart(const FeatureModel& model) {
   std::vector<WeightedFeature> features(model.NumFeatures());
@@ -129,7 +106,7 @@ std::vector<WeightedFeature> WhitenedAtStart(const FeatureModel& model) {
 TEST(RowsThatChangeWithThePose, AFeatureGainingRowsKeepsThoseItWasWhitenedFor) {
   // Whitened on rows 2-3 at the start, all four measured away from it: the cost and the solve
   // use rows 2-3 only, exactly as for a feature that never gains the rows.
-  const RowsByPoseModel gaining(0xCu, FeatureBlock::kAllRows), fixed(0xCu, 0xCu);
+  const LinearTestModel gaining = RowsByPoseModel(0xCu, FeatureBlock::kAllRows), fixed = RowsByPoseModel(0xCu, 0xCu);
   const std::vector<WeightedFeature> features = WhitenedAtStart(gaining);
   const Rigid3d away = ExpSE3((Vector6d() << 0.003, 0.001, -0.002, 0.004, 0.0, 0.002).finished());
   double cost_gaining, cost_fixed;
@@ -151,7 +128,7 @@ TEST(RowsThatChangeWithThePose, AFeatureGainingRowsKeepsThoseItWasWhitenedFor) {
 TEST(RowsThatChangeWithThePose, AFeatureLosingARowCannotBeWhitenedThere) {
   // Whitened on all four rows at the start, rows 2-3 only away from it: no cost there, and a
   // solve that moves away fails rather than whiten it with a factor of other rows.
-  const RowsByPoseModel losing(FeatureBlock::kAllRows, 0xCu);
+  const LinearTestModel losing = RowsByPoseModel(FeatureBlock::kAllRows, 0xCu);
   const std::vector<WeightedFeature> features = WhitenedAtStart(losing);
   const Rigid3d away = ExpSE3((Vector6d() << 0.003, 0.001, -0.002, 0.004, 0.0, 0.002).finished());
   double cost = 0.0;
@@ -162,7 +139,7 @@ TEST(RowsThatChangeWithThePose, AFeatureLosingARowCannotBeWhitenedThere) {
   Matrix6d information;
   EXPECT_FALSE(RefinePose(losing, features, indices, 3, 10, &pose, &information));
   // Control: the same features keeping their rows solve.
-  const RowsByPoseModel keeping(FeatureBlock::kAllRows, FeatureBlock::kAllRows);
+  const LinearTestModel keeping = RowsByPoseModel(FeatureBlock::kAllRows, FeatureBlock::kAllRows);
   pose = Rigid3d();
   EXPECT_TRUE(RefinePose(keeping, WhitenedAtStart(keeping), indices, 3, 10, &pose, &information));
 }

@@ -1,7 +1,7 @@
 // A per-frame robust pose solve: RANSAC over pairs of features (two features, 8 scalars,
-// over-determine the 6-dof pose, paper Sec. 3.3; more when features measure fewer rows), each hypothesis refined by Gauss-Newton from
-// the filter's prediction and scored with a truncated (MSAC) cost; the best is refined on its
-// inliers. Used to seed the EKF when its prior is weak or when it has gone wrong.
+// over-determine the 6-dof pose, paper Sec. 3.3; more when features measure fewer rows), each
+// hypothesis refined by Gauss-Newton from the filter's prediction and scored with a truncated
+// (MSAC) cost; the best is refined on its inliers. Used to seed the EKF when its prior is weak or when it has gone wrong.
 #pragma once
 
 #include <random>

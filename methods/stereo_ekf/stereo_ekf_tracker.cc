@@ -106,6 +106,14 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
   // caller reports the frame lost) rather than keep a step solved with features that are no
   // longer in the set; so after the loop `solver` is the factor of the accepted solution.
   constexpr double kNoUpdate = std::numeric_limits<double>::infinity();
+  // Normal equations of the MAP cost linearised at delta_k (docs/derivations.md):
+  // (H + P^-1) delta = H delta_k - g; false if not solvable.
+  auto solve = [&](const NormalEquations& eq, Vector6d* solution) {
+    const Matrix6d h = eq.FullHessian();
+    if (!solver.Compute(h + prior_information)) return false;
+    *solution = solver.Solve(h * delta_k - eq.gradient);
+    return solution->allFinite();
+  };
   for (int k = 0; k < options_.max_iterations; ++k) {
     delta_k = delta;
     const bool reuse = k == 0 && blocks_at_linearization;
@@ -122,10 +130,7 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
         // Degenerate (or not finite) at this iterate, or no longer measuring every row its
         // whitener was built for: the feature leaves the update, so that it is neither counted
         // as used nor given a zero or wrongly weighted cost.
-        if (!model_->Evaluate(i, pose, false, &block) || !block.RestrictTo(f.block.measured_rows) ||
-            !block.residual.allFinite() || !block.jacobian.allFinite()) {
-          continue;
-        }
+        if (!EvaluateForWhitener(*model_, f, i, pose, &block)) continue;
         f.Whiten(block.residual, block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
       }
       ne.AddWhitened(f.whitened_residual, f.whitened_jacobian);
@@ -133,12 +138,8 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     }
     inliers_.resize(kept);
     if (inliers_.size() < 2) return kNoUpdate;
-    // Normal equations of the MAP cost linearised at delta_k (docs/derivations.md):
-    // (H + P^-1) delta = H delta_k - g.
-    const Matrix6d H = ne.FullHessian();
-    if (!solver.Compute(H + prior_information)) return kNoUpdate;
-    Vector6d next = solver.Solve(H * delta_k - ne.gradient);
-    if (!next.allFinite()) return kNoUpdate;
+    Vector6d next;
+    if (!solve(ne, &next)) return kNoUpdate;
     // Re-gate at the solution: a feature that passed the gate at the prediction but whose
     // linearised posterior cost exceeds it is an outlier the prior let through; drop it and
     // re-solve on the same linearisation (no new evaluation).
@@ -148,10 +149,7 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
       if (inliers_.size() < 2) return kNoUpdate;
       ne = NormalEquations();
       for (int i : inliers_) ne.AddWhitened(features_[i].whitened_residual, features_[i].whitened_jacobian);
-      const Matrix6d h = ne.FullHessian();
-      if (!solver.Compute(h + prior_information)) return kNoUpdate;
-      next = solver.Solve(h * delta_k - ne.gradient);
-      if (!next.allFinite()) return kNoUpdate;
+      if (!solve(ne, &next)) return kNoUpdate;
     }
     delta = next;
     ++counters_.update_iterations;
@@ -195,7 +193,7 @@ bool StereoEkfTracker::RemovePosteriorOutliers(const Vector6d& step) {
   return true;
 }
 
-void StereoEkfTracker::AdaptNoiseScale() {
+void StereoEkfTracker::AdaptNoiseScale(int rows) {
   // Robust scale: the median per-feature posterior cost over the median of chi-square(4)
   // (3.357; a feature of fewer rows has its cost scaled to that median by IteratedUpdate),
   // corrected for the six degrees of freedom the pose absorbs. The median ignores the
@@ -205,7 +203,6 @@ void StereoEkfTracker::AdaptNoiseScale() {
   if (!options_.adaptive_noise || n < 3) return;
   auto middle = posterior_costs_.begin() + n / 2;
   std::nth_element(posterior_costs_.begin(), middle, posterior_costs_.end());
-  const double rows = MeasuredRows();
   const double dof_correction = rows / std::max(1.0, rows - 6.0);
   const double ratio = *middle * dof_correction / 3.357;
   const double a = ratio < 1.0 ? options_.noise_adaptation_rate : 0.2 * options_.noise_adaptation_rate;
@@ -314,11 +311,12 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     // Healthy when the posterior cost is plausible for its degrees of freedom: below
     // max_normalized_cost per degree of freedom, and never below the 99.9 % chi-square quantile
     // (Wilson-Hilferty), which matters for few features.
-    const double dof = std::max(1.0, MeasuredRows() - 6.0);
+    const int rows = MeasuredRows();
+    const double dof = std::max(1.0, rows - 6.0);
     const double h = 2.0 / (9.0 * dof);
     const double chi2_999 = dof * std::pow(1.0 - h + 3.09 * std::sqrt(h), 3.0);
     healthy_ = cost <= std::max(options_.max_normalized_cost * dof, chi2_999);
-    AdaptNoiseScale();
+    AdaptNoiseScale(rows);
     out.status = TrackingStatus::kTracking;
   }
   if (!filter_.cam_from_ref().rotation.allFinite() || !filter_.cam_from_ref().translation.allFinite() ||

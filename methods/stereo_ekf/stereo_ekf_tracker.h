@@ -63,7 +63,8 @@ class StereoEkfTracker : public PoseTracker {
   double IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization);
   // Drops the inliers whose linearised cost after `step` exceeds the gate; true if any.
   bool RemovePosteriorOutliers(const Vector6d& step);
-  void AdaptNoiseScale();
+  // `rows`: MeasuredRows() of this frame's update.
+  void AdaptNoiseScale(int rows);
   // Residual scalars measured by the features of this frame's update (4 per feature, fewer for
   // a feature with rows left out).
   int MeasuredRows() const;

@@ -290,19 +290,21 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
     const bool via_Tprime = !cur.degenerate && t.via_Tprime_plane_sine >= min_plane_sine_;
     if (!via_T && !via_Tprime) return false;
     block->measured_rows = (via_T ? 0x3u : 0u) | (via_Tprime ? 0xCu : 0u);
-    d1.setZero();
-    d2.setZero();
-    if (propagate) {
-      m1.setZero();
-      m2.setZero();
-    }
+    // An unmeasured half gets zero derivatives (ClearUnmeasuredRows below clears its rows;
+    // zeros keep the products that fill them finite).
     if (via_T) {
       block->residual.head<2>() =
           Residual(t.via_T, ref.left, left_pixel_from_normalized_, rig_.left.fx, &d1, want_m1);
+    } else {
+      d1.setZero();
+      m1.setZero();
     }
     if (via_Tprime) {
       block->residual.tail<2>() =
           Residual(t.via_Tprime, ref.left, left_pixel_from_normalized_, rig_.left.fx, &d2, want_m2);
+    } else {
+      d2.setZero();
+      m2.setZero();
     }
     block->jacobian.topRows<2>() = d1 * t.via_T_d_pose;
     block->jacobian.bottomRows<2>() = d2 * t.via_Tprime_d_pose;
