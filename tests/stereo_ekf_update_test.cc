@@ -11,6 +11,7 @@
 #include <random>
 
 #include "geometry/se3.h"
+#include "methods/stereo_ekf/linear_test_model.h"
 #include "methods/stereo_ekf/stereo_ekf_tracker.h"
 #include "tests/test_support.h"
 
@@ -52,66 +53,26 @@ TEST_P(IteratedUpdate, IteratesAsConfigured) {
 INSTANTIATE_TEST_SUITE_P(StereoEkfTrackers, IteratedUpdate,
                          ::testing::Values("trifocal_line_ekf", "yu_point_ekf"));
 
-// A measurement model linear in the pose's logarithm: feature i measures
-//   r_i(M) = A_i (Log(M) - d_true) + n_i,   covariance R_i,
-// so that on the first frame after the start (M_pred = I, where Log(Exp(d) M_pred) = d) the
-// filter's update can be compared with the textbook formulas of eq. 19 written out here.
-class LinearFeatureModel final : public FeatureModel {
- public:
-  LinearFeatureModel(int count, const Vector6d& d_true, std::uint64_t seed) : d_true_(d_true) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    auto random = [&](auto* m) { *m = m->unaryExpr([&](double) { return normal(rng); }); };
-    for (int i = 0; i < count; ++i) {
-      Feature f;
-      random(&f.a);
-      Eigen::Matrix4d l;
-      random(&l);
-      f.r = 1e-5 * (l * l.transpose() + Eigen::Matrix4d::Identity());  // SPD, correlated
-      Eigen::Vector4d z;
-      random(&z);
-      f.noise = f.r.llt().matrixL() * z;  // ~ N(0, R_i): every feature passes the gate
-      features_.push_back(f);
-    }
+// The model of the eq. 19 tests: `count` features with random A_i, random correlated R_i and
+// noise n_i ~ N(0, R_i) as offsets, so that every feature passes the gate.
+std::unique_ptr<LinearTestModel> LinearFeatureModel(int count, const Vector6d& d_true, std::uint64_t seed) {
+  auto model = std::make_unique<LinearTestModel>(d_true);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  auto random = [&](auto* m) { *m = m->unaryExpr([&](double) { return normal(rng); }); };
+  for (int i = 0; i < count; ++i) {
+    LinearTestModel::Feature f;
+    random(&f.a);
+    Eigen::Matrix4d l;
+    random(&l);
+    f.covariance = 1e-5 * (l * l.transpose() + Eigen::Matrix4d::Identity());  // SPD, correlated
+    Eigen::Vector4d z;
+    random(&z);
+    f.offset = f.covariance.llt().matrixL() * z;
+    model->AddFeature(f);
   }
-  void Reset(const StereoRig&) override {}
-  int SetReference(const StereoFrame&) override { return NumFeatures(); }
-  int SetCurrent(const StereoFrame&) override { return NumFeatures(); }
-  int NumFeatures() const override { return static_cast<int>(features_.size()); }
-  int CurrentStereoFeatures() const override { return NumFeatures(); }
-  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance, FeatureBlock* block) const override {
-    const Feature& f = features_[index];
-    const Vector6d d = LogSE3(cam_from_ref);
-    if (index == degenerate_away_ && d.norm() > 1e-12) return false;
-    block->residual = f.a * (d - d_true_) + (1.0 + noise_growth_ * d.squaredNorm()) * f.noise;
-    block->jacobian = f.a;  // exact at M = I without noise growth; the tests use the first update
-    if (with_covariance) block->covariance = f.r;
-    block->measured_rows = f.rows_away != 0 && d.norm() > 1e-12 ? f.rows_away : f.rows;
-    block->ClearUnmeasuredRows(with_covariance);
-    return true;
-  }
-
-  struct Feature {
-    Eigen::Matrix<double, 4, 6> a;
-    Eigen::Matrix4d r;
-    Eigen::Vector4d noise;
-    unsigned rows = FeatureBlock::kAllRows;
-    unsigned rows_away = 0;  // if set, the rows measured away from the prediction (M = I)
-  };
-  const std::vector<Feature>& features() const { return features_; }
-  Feature& mutable_feature(int index) { return features_[index]; }
-  void set_noise(int index, const Eigen::Vector4d& noise) { features_[index].noise = noise; }
-  // The noise is scaled by 1 + growth |Log(M)|^2: a model that is not linear after all.
-  void set_noise_growth(double growth) { noise_growth_ = growth; }
-  // Feature `index` can be measured at the prediction (M = I) only.
-  void set_degenerate_away(int index) { degenerate_away_ = index; }
-
- private:
-  Vector6d d_true_;
-  double noise_growth_ = 0.0;
-  int degenerate_away_ = -1;
-  std::vector<Feature> features_;
-};
+  return model;
+}
 
 // The motion the linear models measure: rad and m, within the velocity prior.
 Vector6d TrueDelta() { return (Vector6d() << 0.004, -0.003, 0.006, 0.01, -0.008, 0.005).finished(); }
@@ -141,8 +102,8 @@ TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
   StereoEkfOptions options = PaperFilter(false);
   options.state = GetParam();
   const Vector6d d_true = TrueDelta();
-  auto owned = std::make_unique<LinearFeatureModel>(5, d_true, 7);
-  const LinearFeatureModel& model = *owned;
+  auto owned = LinearFeatureModel(5, d_true, 7);
+  const LinearTestModel& model = *owned;
   StereoEkfTracker tracker(options, std::move(owned), nlohmann::json::object());
 
   // The prior of the first update: the filter's prediction from its start.
@@ -159,8 +120,8 @@ TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
   for (int i = 0; i < n; ++i) {
     const auto& f = model.features()[i];
     h.middleRows<4>(4 * i) = f.a;
-    r.block<4, 4>(4 * i, 4 * i) = f.r;
-    innovation.segment<4>(4 * i) = f.a * d_true - f.noise;
+    r.block<4, 4>(4 * i, 4 * i) = f.covariance;
+    innovation.segment<4>(4 * i) = f.a * d_true - f.offset;
   }
   const Eigen::MatrixXd gain = p * h.transpose() * (h * p * h.transpose() + r).inverse();
   const Vector6d expected_delta = gain * innovation;
@@ -182,13 +143,13 @@ TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
 
 // Two features with errors that no pose explains, concentrated on feature 1, whose whitened
 // squared norm is `bad_cost` (feature 0's stays below `max_good_cost`).
-std::unique_ptr<LinearFeatureModel> DisagreeingPair(const Vector6d& d_true, double bad_cost, double max_good_cost) {
-  auto model = std::make_unique<LinearFeatureModel>(2, d_true, 11);
+std::unique_ptr<LinearTestModel> DisagreeingPair(const Vector6d& d_true, double bad_cost, double max_good_cost) {
+  auto model = LinearFeatureModel(2, d_true, 11);
   Eigen::Matrix<double, 8, 6> h;
   Eigen::Matrix<double, 8, 8> r_sqrt = Eigen::Matrix<double, 8, 8>::Zero();
   for (int i = 0; i < 2; ++i) {
     const auto& f = model->features()[i];
-    const Eigen::Matrix4d l = f.r.llt().matrixL();
+    const Eigen::Matrix4d l = f.covariance.llt().matrixL();
     r_sqrt.block<4, 4>(4 * i, 4 * i) = l;
     h.middleRows<4>(4 * i) = l.triangularView<Eigen::Lower>().solve(f.a);
   }
@@ -201,8 +162,8 @@ std::unique_ptr<LinearFeatureModel> DisagreeingPair(const Vector6d& d_true, doub
   e *= std::sqrt(bad_cost) / e.bottomRows<4>().norm();
   EXPECT_LT(e.topRows<4>().squaredNorm(), max_good_cost);
   const Eigen::Matrix<double, 8, 1> n = r_sqrt * e;
-  model->set_noise(0, n.head<4>());
-  model->set_noise(1, n.tail<4>());
+  model->feature(0).offset = n.head<4>();
+  model->feature(1).offset = n.tail<4>();
   return model;
 }
 
@@ -231,7 +192,7 @@ TEST(FirstUpdate, TwoFeaturesThatDisagreeLeaveThePrediction) {
     options.max_iterations = c.max_iterations;
     // Feature 0 stays inside the gate, also with its error tripled.
     auto model = DisagreeingPair(d_true, c.bad_cost, c.growth > 0.0 ? g / 9.0 : g);
-    model->set_noise_growth(c.growth);
+    model->set_offset_growth(c.growth);
     StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
     const TrackerOutput out = TrackFirstUpdate(&tracker);
     EXPECT_EQ(out.status, c.expected);
@@ -252,7 +213,7 @@ TEST(FirstUpdate, AFeatureDegenerateAtTheIterateLeavesTheUpdate) {
   StereoEkfOptions options = PaperFilter(true);
   options.max_iterations = 3;
   options.iteration_tolerance = 0.0;
-  auto model = std::make_unique<LinearFeatureModel>(3, TrueDelta(), 5);
+  auto model = LinearFeatureModel(3, TrueDelta(), 5);
   model->set_degenerate_away(2);
   StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
   const TrackerOutput out = TrackFirstUpdate(&tracker);
@@ -265,8 +226,8 @@ TEST(FirstUpdate, ANewReferenceOnAFrameWithoutUpdateIsStillLost) {
   // The paper preset counts the lines inside the gate for feature replacement: a frame whose
   // lines all miss the gate makes the current pair the new reference, but the pose is only a
   // prediction, and the frame is reported lost (not "reinitialized").
-  auto model = std::make_unique<LinearFeatureModel>(3, TrueDelta(), 5);
-  for (int i = 0; i < 3; ++i) model->set_noise(i, Eigen::Vector4d::Constant(10.0));  // far outside
+  auto model = LinearFeatureModel(3, TrueDelta(), 5);
+  for (int i = 0; i < 3; ++i) model->feature(i).offset = Eigen::Vector4d::Constant(10.0);  // far outside
   StereoEkfTracker tracker(PaperFilter(false), std::move(model), nlohmann::json::object());
   const TrackerOutput out = TrackFirstUpdate(&tracker);
   EXPECT_EQ(out.status, TrackingStatus::kLost);
@@ -281,12 +242,12 @@ TEST(FirstUpdate, AFeatureOfTwoRowsIsGatedOnTwoDegreesOfFreedom) {
   // Jacobian its innovation, its cost at the solution and its whitened residual are one number.
   for (const double cost : {12.0, 16.0}) {
     SCOPED_TRACE(testing::Message() << "cost " << cost);
-    auto model = std::make_unique<LinearFeatureModel>(4, TrueDelta(), 5);
-    LinearFeatureModel::Feature& f = model->mutable_feature(3);
+    auto model = LinearFeatureModel(4, TrueDelta(), 5);
+    LinearTestModel::Feature& f = model->feature(3);
     f.a.setZero();
-    f.r = 1e-5 * Eigen::Matrix4d::Identity();
-    f.noise = Eigen::Vector4d(std::sqrt(cost * 1e-5), 0.0, 7.0, 7.0);  // rows 2-3 are not measured
-    f.rows = 0x3u;
+    f.covariance = 1e-5 * Eigen::Matrix4d::Identity();
+    f.offset = Eigen::Vector4d(std::sqrt(cost * 1e-5), 0.0, 7.0, 7.0);  // rows 2-3 are not measured
+    f.rows_at_start = f.rows_away = 0x3u;
     StereoEkfTracker tracker(PaperFilter(true), std::move(model), nlohmann::json::object());
     const TrackerOutput out = TrackFirstUpdate(&tracker);
     EXPECT_EQ(out.status, TrackingStatus::kTracking);
@@ -303,9 +264,9 @@ TEST(FirstUpdate, AFeatureWhoseRowsChangeAtTheIterate) {
   options.max_iterations = 3;
   options.iteration_tolerance = 0.0;
   auto run = [&](unsigned rows, unsigned rows_away, Rigid3d* pose) {
-    auto model = std::make_unique<LinearFeatureModel>(4, TrueDelta(), 5);
-    model->mutable_feature(3).rows = rows;
-    model->mutable_feature(3).rows_away = rows_away;
+    auto model = LinearFeatureModel(4, TrueDelta(), 5);
+    model->feature(3).rows_at_start = rows;
+    model->feature(3).rows_away = rows_away;
     StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
     const TrackerOutput out = TrackFirstUpdate(&tracker);
     EXPECT_EQ(out.status, TrackingStatus::kTracking);
@@ -314,22 +275,22 @@ TEST(FirstUpdate, AFeatureWhoseRowsChangeAtTheIterate) {
   };
   Rigid3d gaining, fixed, losing, all;
   EXPECT_EQ(run(0xCu, FeatureBlock::kAllRows, &gaining), 4);
-  EXPECT_EQ(run(0xCu, 0, &fixed), 4);
+  EXPECT_EQ(run(0xCu, 0xCu, &fixed), 4);
   EXPECT_LT(LogSE3(gaining * fixed.Inverse()).norm(), 1e-12);
   EXPECT_EQ(run(FeatureBlock::kAllRows, 0xCu, &losing), 3);
-  EXPECT_EQ(run(FeatureBlock::kAllRows, 0, &all), 4);
+  EXPECT_EQ(run(FeatureBlock::kAllRows, FeatureBlock::kAllRows, &all), 4);
 }
 
 // Four features of two rows with a zero Jacobian: their posterior costs are their whitened
 // residuals, `costs`, whatever the update does.
-std::unique_ptr<LinearFeatureModel> TwoRowFeatures(const std::vector<double>& costs) {
-  auto model = std::make_unique<LinearFeatureModel>(static_cast<int>(costs.size()), TrueDelta(), 5);
+std::unique_ptr<LinearTestModel> TwoRowFeatures(const std::vector<double>& costs) {
+  auto model = LinearFeatureModel(static_cast<int>(costs.size()), TrueDelta(), 5);
   for (size_t i = 0; i < costs.size(); ++i) {
-    LinearFeatureModel::Feature& f = model->mutable_feature(static_cast<int>(i));
+    LinearTestModel::Feature& f = model->feature(static_cast<int>(i));
     f.a.setZero();
-    f.r = 1e-5 * Eigen::Matrix4d::Identity();
-    f.noise = Eigen::Vector4d(std::sqrt(costs[i] * 1e-5), 0.0, 0.0, 0.0);
-    f.rows = 0x3u;
+    f.covariance = 1e-5 * Eigen::Matrix4d::Identity();
+    f.offset = Eigen::Vector4d(std::sqrt(costs[i] * 1e-5), 0.0, 0.0, 0.0);
+    f.rows_at_start = f.rows_away = 0x3u;
   }
   return model;
 }
