@@ -6,6 +6,12 @@
 // measured values are in the comments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/json_reader.h"
+#include "methods/trifocal_line_ekf/line_transfer_model.h"
 #include "tests/test_support.h"
 
 namespace slt {
@@ -15,28 +21,75 @@ const nlohmann::json kPaperProtocol = nlohmann::json::object();  // {} is the pa
 const nlohmann::json kFaithful = {{"preset", "paper"}};
 const nlohmann::json kDefault = nlohmann::json::object();
 
+// 1.4826 x the median absolute value: the standard deviation of the Gaussian bulk of `values`,
+// not inflated by the heavy tail that near-degenerate transfers give.
+double RobustSpread(std::vector<double> values) {
+  for (double& v : values) v = std::abs(v);
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return 1.4826 * values[values.size() / 2];
+}
+
+TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {
+  // The paper leaves R's values unstated; the preset takes the spread of each (theta, lambda)
+  // residual at the true pose under the paper protocol's noise. Re-measured here on other seeds
+  // than the 40 it was chosen on: a change of the residual, the transfer or the simulator's
+  // noise that leaves the preset's R mis-scaled fails this test (the earlier 0.005 rad was
+  // 2.4x too small).
+  auto tracker = CreateTracker("trifocal_line_ekf", kFaithful);
+  LineTransferOptions options;
+  JsonReader reader(tracker->Options().at("measurement"), "test", "measurement");
+  ReadLineTransferOptions(reader, &options);
+  ASSERT_EQ(options.residual, "theta_lambda");
+  ASSERT_EQ(options.noise, "fixed");
+  LineTransferModel model(options);
+
+  std::vector<double> residuals[4];
+  for (std::uint64_t seed = 101; seed <= 110; ++seed) {
+    SimulationConfig config = SimulationConfigFromJson(kPaperProtocol, "test");
+    config.seed = seed;
+    const SimulatedSequence sim = Simulate(config);
+    model.Reset(sim.sequence.rig);
+    model.SetReference(sim.sequence.frames[0]);
+    for (size_t f = 1; f < sim.sequence.frames.size(); ++f) {
+      model.SetCurrent(sim.sequence.frames[f]);
+      const Rigid3d cam_from_ref = sim.ground_truth[f].world_from_cam.Inverse();  // world = reference
+      for (int i = 0; i < model.NumFeatures(); ++i) {
+        FeatureBlock block;
+        if (!model.Evaluate(i, cam_from_ref, false, &block) || block.measured_rows != FeatureBlock::kAllRows) continue;
+        for (int row = 0; row < 4; ++row) residuals[row].push_back(block.residual(row));
+      }
+    }
+  }
+  ASSERT_GT(residuals[0].size(), 10000u);
+  // Measured on these seeds: 0.0116, 1.87, 0.0117, 1.91 (rad, px, rad, px).
+  const double fixed_sigma[4] = {options.fixed_sigma_rad, options.fixed_sigma_px, options.fixed_sigma_rad,
+                                 options.fixed_sigma_px};
+  for (int row = 0; row < 4; ++row) {
+    EXPECT_NEAR(RobustSpread(residuals[row]) / fixed_sigma[row], 1.0, 0.1) << "residual row " << row;
+  }
+}
+
 TEST(TrifocalLineEkfAccuracy, FaithfulSetting) {
-  // Paper Fig. 4 reports below 0.01 m and 0.4 deg at +-2.5 px. The faithful setting (6-D
-  // velocity state, one EKF update, (theta, lambda) residual, fixed R) meets the translation
-  // figure and is at the rotation one but not reliably below it on this protocol: 0.356 deg on
-  // these seeds, 0.42 deg over seeds 1-200 (20-trial means 0.31-0.56 deg); see
-  // docs/derivations.md Sec. 6. So 0.4 deg is not asserted here, where it would pass by the
-  // choice of seeds; this guards the measured level. The default setting below is the one that
-  // beats the paper.
-  const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kFaithful, kPaperProtocol, 20);
+  // Paper Fig. 4 reports below 0.01 m and 0.4 deg at +-2.5 px, each a mean over 20 trials. The
+  // faithful setting (6-D velocity state, one EKF update, (theta, lambda) residual, fixed R)
+  // is at about 0.35 deg: 0.355 / 0.341 / 0.359 deg over three sets of 400 trials, and 54 of
+  // those 60 sets of 20 trials below 0.4 deg. A single set of 20 would pass or fail by the
+  // choice of seeds (seeds 1-20: 0.404 deg), so the target is checked on the mean over 100
+  // seeds, whose spread is a third of a 20-trial mean's.
+  const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kFaithful, kPaperProtocol, 100);
   EXPECT_TRUE(e.all_finite);
-  EXPECT_LT(e.mean.translation_m, 0.01);  // the paper's figure
-  // Regression: measured 0.356 deg / 3.23 mm (worst trial 0.68 deg / 5.1 mm; before each
-  // transfer was gated on its own, 0.448 deg / 4.06 mm).
-  EXPECT_LT(e.mean.translation_m, 0.0042);
-  EXPECT_LT(e.mean.rotation_deg, 0.46);
+  // Measured 0.331 deg / 2.96 mm (worst trial 0.93 deg; with the earlier fixed R of 0.005 rad
+  // and 2 px, 0.42 deg / 4.0 mm over seeds 1-200).
+  EXPECT_LT(e.mean.rotation_deg, 0.4);  // the paper's figure
+  EXPECT_LT(e.mean.translation_m, 0.01);
+  EXPECT_LT(e.mean.translation_m, 0.0039);  // regression
 }
 
 TEST(TrifocalLineEkfAccuracy, FaithfulSettingTracksPastTheReferenceRightCamera) {
   // Seed 2 passes within 2 cm of where the reference right camera stood: T over (I_1, I'_1, I_t)
   // degenerates for every line at once. With each transfer gated on its own, T' keeps measuring
-  // and the reference stays (measured 0.095 deg / 1.5 mm at frame 100). Dropping whole lines
-  // there forced a new reference at a poor pose, which the trajectory keeps: 1.17 deg.
+  // and the reference stays. Dropping whole lines there forced a new reference at a poor pose,
+  // which the rest of the trajectory keeps.
   SimulationConfig config = SimulationConfigFromJson(kPaperProtocol, "test");
   config.seed = 2;
   const SimulatedSequence sim = Simulate(config);
@@ -49,12 +102,18 @@ TEST(TrifocalLineEkfAccuracy, FaithfulSettingTracksPastTheReferenceRightCamera) 
 
   auto tracker = CreateTracker("trifocal_line_ekf", kFaithful);
   const TrackRun run = RunTracker(*tracker, sim.sequence);
+  PoseError mean;
   for (size_t f = 1; f < run.outputs.size(); ++f) {
     ASSERT_EQ(run.outputs[f].status, TrackingStatus::kTracking) << "frame " << f;
+    const PoseError e = ErrorAt(sim, run, static_cast<int>(f));
+    mean.rotation_deg += e.rotation_deg / (run.outputs.size() - 1);
+    mean.translation_m += e.translation_m / (run.outputs.size() - 1);
   }
-  const PoseError e = ErrorAt(sim, run, 99);
-  EXPECT_LT(e.rotation_deg, 0.3);
-  EXPECT_LT(e.translation_m, 0.004);
+  // The whole trajectory, not one frame: the error along this run swings between 0.2 and 2 deg.
+  // Measured mean over frames 0.85 deg / 7.6 mm (with the earlier fixed R, 1.30 deg / 11.1 mm,
+  // though its frame 100 happened to be at 0.1 deg).
+  EXPECT_LT(mean.rotation_deg, 1.1);
+  EXPECT_LT(mean.translation_m, 0.0099);
 }
 
 TEST(TrifocalLineEkfAccuracy, DefaultSettingHalvesThePapersError) {

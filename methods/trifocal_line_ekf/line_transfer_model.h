@@ -44,9 +44,10 @@ struct LineTransferOptions {
   // transfers return the same line and R is nearly singular.
   double covariance_floor_px = 0.05;
   double covariance_floor_rad = 1e-4;
-  // Fixed R: per residual scalar.
+  // Fixed R: per residual scalar (the paper preset sets the spread measured for its
+  // (theta, lambda) residual, trifocal_line_ekf.cc).
   double fixed_sigma_px = 2.0;
-  double fixed_sigma_rad = 0.005;
+  double fixed_sigma_rad = 0.012;
   // Lines closer than this to the epipolar direction in the left image (at the segment's middle)
   // are not measured: a stereo pair does not define a line in an epipolar plane (horizontal
   // lines in a horizontal rig), and near it the transfer is too non-linear for the linearised
