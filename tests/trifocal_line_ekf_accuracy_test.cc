@@ -1,6 +1,6 @@
 // Accuracy regressions of the trifocal-line EKF on the paper's protocol (Sec. 5.1): 40 random
 // lines, 100 frames, per-frame motion up to 1.2 deg and 0.010 m, error of the pose at frame 100,
-// mean over 20 trials on fixed seeds. Each test checks the project's target (issue 3) and, where
+// mean over 20 trials on fixed seeds (100 for the faithful setting, see there). Each test checks the project's target (issue 3) and, where
 // the measured value is well inside it, a regression bound about 1.3x the measured value (1.5x
 // where single trials can flip), so that a lost margin fails before the target does. The
 // measured values are in the comments.
@@ -31,8 +31,8 @@ double RobustSpread(std::vector<double> values) {
 
 TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {
   // The paper leaves R's values unstated; the preset takes the spread of each (theta, lambda)
-  // residual at the true pose under the paper protocol's noise. Re-measured here on other seeds
-  // than the 40 it was chosen on: a change of the residual, the transfer or the simulator's
+  // residual at the true pose under the paper protocol's noise. Re-measured here on 40 other
+  // seeds than the 40 it was chosen on (sets of 10 seeds vary by about 5 %): a change of the residual, the transfer or the simulator's
   // noise that leaves the preset's R mis-scaled fails this test (the earlier 0.005 rad was
   // 2.4x too small).
   auto tracker = CreateTracker("trifocal_line_ekf", kFaithful);
@@ -44,7 +44,7 @@ TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {
   LineTransferModel model(options);
 
   std::vector<double> residuals[4];
-  for (std::uint64_t seed = 101; seed <= 110; ++seed) {
+  for (std::uint64_t seed = 101; seed <= 140; ++seed) {
     SimulationConfig config = SimulationConfigFromJson(kPaperProtocol, "test");
     config.seed = seed;
     const SimulatedSequence sim = Simulate(config);
@@ -61,7 +61,8 @@ TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {
     }
   }
   ASSERT_GT(residuals[0].size(), 10000u);
-  // Measured on these seeds: 0.0116, 1.87, 0.0117, 1.91 (rad, px, rad, px).
+  // Measured on these seeds: 0.0118, 1.92, 0.0118, 1.90 (rad, px, rad, px); on seeds 1-40, where
+  // the preset's values come from, 0.0117, 1.86, 0.0117, 1.91.
   const double fixed_sigma[4] = {options.fixed_sigma_rad, options.fixed_sigma_px, options.fixed_sigma_rad,
                                  options.fixed_sigma_px};
   for (int row = 0; row < 4; ++row) {
@@ -72,14 +73,14 @@ TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {
 TEST(TrifocalLineEkfAccuracy, FaithfulSetting) {
   // Paper Fig. 4 reports below 0.01 m and 0.4 deg at +-2.5 px, each a mean over 20 trials. The
   // faithful setting (6-D velocity state, one EKF update, (theta, lambda) residual, fixed R)
-  // is at about 0.35 deg: 0.355 / 0.341 / 0.359 deg over three sets of 400 trials, and 54 of
+  // is at about 0.36 deg: 0.364 deg over 1 200 trials (results/faithful_fixed_r), and 51 of
   // those 60 sets of 20 trials below 0.4 deg. A single set of 20 would pass or fail by the
   // choice of seeds (seeds 1-20: 0.404 deg), so the target is checked on the mean over 100
-  // seeds, whose spread is a third of a 20-trial mean's.
+  // seeds, whose spread is less than half a 20-trial mean's (1/sqrt(5)).
   const TrialErrors e = FinalErrorOverTrials("trifocal_line_ekf", kFaithful, kPaperProtocol, 100);
   EXPECT_TRUE(e.all_finite);
-  // Measured 0.331 deg / 2.96 mm (worst trial 0.93 deg; with the earlier fixed R of 0.005 rad
-  // and 2 px, 0.42 deg / 4.0 mm over seeds 1-200).
+  // Measured 0.331 deg / 2.96 mm (worst trial 0.93 deg). The earlier guessed R (0.005 rad, 2 px)
+  // gives 0.369 deg / 3.50 mm on these seeds and passes too: what guards R is the test above.
   EXPECT_LT(e.mean.rotation_deg, 0.4);  // the paper's figure
   EXPECT_LT(e.mean.translation_m, 0.01);
   EXPECT_LT(e.mean.translation_m, 0.0039);  // regression
@@ -109,9 +110,10 @@ TEST(TrifocalLineEkfAccuracy, FaithfulSettingTracksPastTheReferenceRightCamera) 
     mean.rotation_deg += e.rotation_deg / (run.outputs.size() - 1);
     mean.translation_m += e.translation_m / (run.outputs.size() - 1);
   }
-  // The whole trajectory, not one frame: the error along this run swings between 0.2 and 2 deg.
-  // Measured mean over frames 0.85 deg / 7.6 mm (with the earlier fixed R, 1.30 deg / 11.1 mm,
-  // though its frame 100 happened to be at 0.1 deg).
+  // The whole trajectory, not one frame: the error along this run swings between 0.1 and 3.7 deg
+  // (peak at frames 40-44). Measured mean over frames 0.85 deg / 7.6 mm; with the earlier guessed
+  // R 1.30 deg / 11.1 mm. This test used to bound frame 100 alone (< 0.3 deg, 4 mm), which the
+  // guessed R happened to meet (0.095 deg) and the measured R does not (0.71 deg / 5.3 mm).
   EXPECT_LT(mean.rotation_deg, 1.1);
   EXPECT_LT(mean.translation_m, 0.0099);
 }

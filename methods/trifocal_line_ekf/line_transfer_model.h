@@ -44,8 +44,10 @@ struct LineTransferOptions {
   // transfers return the same line and R is nearly singular.
   double covariance_floor_px = 0.05;
   double covariance_floor_rad = 1e-4;
-  // Fixed R: per residual scalar (the paper preset sets the spread measured for its
-  // (theta, lambda) residual, trifocal_line_ekf.cc).
+  // Fixed R: per residual scalar. fixed_sigma_px serves lambda and the endpoint distances;
+  // fixed_sigma_rad, theta. The paper preset sets the spread measured for its (theta, lambda)
+  // residual at +-2.5 px (0.012 rad, 1.9 px; trifocal_line_ekf.cc); the endpoint distances
+  // spread 2.2 px there.
   double fixed_sigma_px = 2.0;
   double fixed_sigma_rad = 0.012;
   // Lines closer than this to the epipolar direction in the left image (at the segment's middle)
