@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "common/json_reader.h"
+#include "evaluation/metrics.h"
 #include "methods/trifocal_line_ekf/line_transfer_model.h"
 #include "tests/test_support.h"
 
@@ -25,8 +27,7 @@ const nlohmann::json kDefault = nlohmann::json::object();
 // not inflated by the heavy tail that near-degenerate transfers give.
 double RobustSpread(std::vector<double> values) {
   for (double& v : values) v = std::abs(v);
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return 1.4826 * values[values.size() / 2];
+  return 1.4826 * ComputeStatistics(std::move(values)).median;
 }
 
 TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {

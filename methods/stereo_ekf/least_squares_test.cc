@@ -95,11 +95,8 @@ LinearTestModel RowsByPoseModel(unsigned rows_at_start, unsigned rows_away) {
 }
 
 std::vector<WeightedFeature> WhitenedAtStart(const FeatureModel& model) {
-  std::vector<WeightedFeature> features(model.NumFeatures());
-  for (int i = 0; i < model.NumFeatures(); ++i) {
-    EXPECT_TRUE(model.Evaluate(i, Rigid3d(), true, &features[i].block));
-    EXPECT_TRUE(features[i].FactorCovariance());
-  }
+  std::vector<WeightedFeature> features;
+  EXPECT_TRUE(WhitenedFeaturesAt(model, Rigid3d(), &features));
   return features;
 }
 

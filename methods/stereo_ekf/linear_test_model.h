@@ -12,6 +12,7 @@
 
 #include "geometry/se3.h"
 #include "methods/stereo_ekf/feature_model.h"
+#include "methods/stereo_ekf/least_squares.h"
 
 namespace slt {
 
@@ -71,5 +72,15 @@ class LinearTestModel final : public FeatureModel {
   double offset_growth_ = 0.0;
   int degenerate_away_ = -1;
 };
+
+// Every feature of `model` evaluated at `at` with its covariance and whitened, as the filter
+// does at its prediction. False if one cannot be.
+inline bool WhitenedFeaturesAt(const FeatureModel& model, const Rigid3d& at, std::vector<WeightedFeature>* features) {
+  features->assign(model.NumFeatures(), WeightedFeature());
+  for (int i = 0; i < model.NumFeatures(); ++i) {
+    if (!model.Evaluate(i, at, true, &(*features)[i].block) || !(*features)[i].FactorCovariance()) return false;
+  }
+  return true;
+}
 
 }  // namespace slt

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <numeric>
 #include <vector>
 
 #include "geometry/se3.h"
@@ -24,13 +25,10 @@ TEST(RobustPoseSolver, SamplesEnoughTwoRowFeaturesToFixThePose) {
   // directions where they started and agrees with no other feature. Three do fix the pose, so
   // the solver finds the 6 inliers among 8 and the exact pose.
   const LinearTestModel model = TwoRowModel();
-  std::vector<WeightedFeature> features(model.NumFeatures());
-  std::vector<int> valid;
-  for (int i = 0; i < model.NumFeatures(); ++i) {
-    ASSERT_TRUE(model.Evaluate(i, Rigid3d(), true, &features[i].block));
-    ASSERT_TRUE(features[i].FactorCovariance());
-    valid.push_back(i);
-  }
+  std::vector<WeightedFeature> features;
+  ASSERT_TRUE(WhitenedFeaturesAt(model, Rigid3d(), &features));
+  std::vector<int> valid(model.NumFeatures());
+  std::iota(valid.begin(), valid.end(), 0);
   GateThresholds gate;
   gate.by_dimension[2] = 13.82;  // chi-square(2), 99.9 %
   gate.by_dimension[4] = 18.47;

@@ -41,6 +41,21 @@ Rigid3d SomeMotion() {
   return ExpSE3(xi);
 }
 
+// A pose near `truth` where a feature's residual and Jacobian are checked away from the truth.
+Rigid3d NearTruth(const Rigid3d& truth) {
+  return ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+}
+
+// Central differences of feature `feature`'s residual under at <- Exp(d) at.
+Eigen::Matrix<double, 4, 6> NumericPoseJacobian(const LineTransferModel& model, int feature, const Rigid3d& at) {
+  const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
+    FeatureBlock b;
+    EXPECT_TRUE(model.Evaluate(feature, ExpSE3(d) * at, false, &b));
+    return b.residual;
+  };
+  return CentralDifferenceJacobian<4, 6>(f, Vector6d::Zero());
+}
+
 LineTransferOptions Options(const std::string& direction, const std::string& residual) {
   LineTransferOptions o;
   o.direction = direction;
@@ -64,18 +79,13 @@ TEST_P(LineTransferModelTest, ZeroResidualAtTruthAndJacobianMatches) {
     ASSERT_TRUE(model.Evaluate(i, truth, true, &block));
     EXPECT_LT(block.residual.norm(), 1e-9) << "feature " << i;
     // Jacobian against central differences, away from the truth too.
-    const Rigid3d at = ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+    const Rigid3d at = NearTruth(truth);
     ASSERT_TRUE(model.Evaluate(i, at, false, &block));
     // Negative control: away from the truth the residual and the Jacobian do not vanish (a model
     // returning zeros would pass the two checks around this one).
     EXPECT_GT(block.residual.norm(), 1e-3) << "feature " << i;
     EXPECT_GT(block.jacobian.norm(), 1.0) << "feature " << i;
-    const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
-      FeatureBlock b;
-      EXPECT_TRUE(model.Evaluate(i, ExpSE3(d) * at, false, &b));
-      return b.residual;
-    };
-    const Eigen::Matrix<double, 4, 6> numeric = CentralDifferenceJacobian<4, 6>(f, Vector6d::Zero());
+    const Eigen::Matrix<double, 4, 6> numeric = NumericPoseJacobian(model, i, at);
     EXPECT_LT((numeric - block.jacobian).norm(), 1e-6 * (1.0 + numeric.norm())) << "feature " << i;
   }
 }
@@ -180,15 +190,10 @@ void ExpectOnlyRowsMeasured(const LineTransferModel& model, int feature, const R
   EXPECT_LT(block.residual.norm(), 1e-9);  // noise-free data at the truth
   // Away from the truth: the measured rows follow central differences and do not vanish; the
   // others carry nothing (zero residual and Jacobian, unit variance, no correlation).
-  const Rigid3d at = ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+  const Rigid3d at = NearTruth(truth);
   ASSERT_TRUE(model.Evaluate(feature, at, true, &block));
   ASSERT_EQ(block.measured_rows, rows);
-  const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
-    FeatureBlock b;
-    EXPECT_TRUE(model.Evaluate(feature, ExpSE3(d) * at, false, &b));
-    return b.residual;
-  };
-  const Eigen::Matrix<double, 4, 6> numeric = CentralDifferenceJacobian<4, 6>(f, Vector6d::Zero());
+  const Eigen::Matrix<double, 4, 6> numeric = NumericPoseJacobian(model, feature, at);
   EXPECT_LT((numeric - block.jacobian).norm(), 1e-6 * (1.0 + numeric.norm()));
   for (int row = 0; row < 4; ++row) {
     if (rows & (1u << row)) {
