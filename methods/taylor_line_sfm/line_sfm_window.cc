@@ -1,0 +1,285 @@
+#include "methods/taylor_line_sfm/line_sfm_window.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "geometry/plucker.h"
+
+namespace slt {
+namespace {
+
+bool ByIdThenImage(const WindowObservation& a, const WindowObservation& b) {
+  return a.id < b.id || (a.id == b.id && a.left && !b.left);
+}
+
+bool SameIdAndImage(const WindowObservation& a, const WindowObservation& b) {
+  return a.id == b.id && a.left == b.left;
+}
+
+double SegmentLength(const Segment2d& s) { return (s.tail<2>() - s.head<2>()).norm(); }
+
+// Union-find over frame indices, for the connected group of the newest frame.
+int Root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+void CollectWindowObservations(const StereoFrame& frame, double min_segment_length_px,
+                               std::vector<WindowObservation>* out) {
+  out->clear();
+  for (const LineObservation& o : frame.left) out->push_back({o.id, true, o.segment});
+  for (const LineObservation& o : frame.right) out->push_back({o.id, false, o.segment});
+  std::sort(out->begin(), out->end(), ByIdThenImage);
+  // An id listed twice in one image is ambiguous: every copy goes, whatever its length. Then
+  // the segments too short (or not finite) to fix a direction go.
+  size_t kept = 0;
+  for (size_t begin = 0, end = 0; begin < out->size(); begin = end) {
+    end = begin + 1;
+    while (end < out->size() && SameIdAndImage((*out)[begin], (*out)[end])) ++end;
+    const Segment2d& segment = (*out)[begin].segment;
+    if (end - begin == 1 && segment.allFinite() &&
+        SegmentLength(segment) >= std::max(min_segment_length_px, 1e-9)) {
+      (*out)[kept++] = (*out)[begin];
+    }
+  }
+  out->resize(kept);
+}
+
+LineSfmWindow::LineSfmWindow(const TaylorLineSfmOptions& options) : options_(options) {
+  options_.Check();
+  min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
+  if (options_.loss == "huber") {
+    robust_loss_ = std::make_unique<ceres::HuberLoss>(options_.loss_scale);
+  } else if (options_.loss == "cauchy") {
+    robust_loss_ = std::make_unique<ceres::CauchyLoss>(options_.loss_scale);
+  }
+  solver_options_.linear_solver_type =
+      options_.linear_solver == "sparse_schur" ? ceres::SPARSE_SCHUR : ceres::DENSE_SCHUR;
+  solver_options_.max_num_iterations = options_.max_iterations;
+  solver_options_.function_tolerance = options_.function_tolerance;
+  solver_options_.gradient_tolerance = options_.gradient_tolerance;
+  solver_options_.parameter_tolerance = options_.parameter_tolerance;
+  solver_options_.num_threads = options_.threads;
+  solver_options_.logging_type = ceres::SILENT;
+  solver_options_.minimizer_progress_to_stdout = false;
+}
+
+void LineSfmWindow::Reset(const StereoRig& rig) {
+  rig.Check();
+  rig_ = rig;
+  cameras_[0] = SegmentCamera::FromRig(rig, true);
+  cameras_[1] = SegmentCamera::FromRig(rig, false);
+  frames_.clear();
+  lines_.clear();
+}
+
+void LineSfmWindow::AddFrame(const Rigid3d& cam_from_world, std::vector<WindowObservation> observations) {
+  FrameState& frame = frames_.emplace_back();
+  PoseToParameters(cam_from_world, frame.pose);
+  frame.observations = std::move(observations);
+  if (options_.window_frames > 0) {
+    while (static_cast<int>(frames_.size()) > options_.window_frames) frames_.pop_front();
+  }
+  for (auto& [id, line] : lines_) line.observing_frames = 0;
+  for (const FrameState& f : frames_) {
+    for (const WindowObservation& o : f.observations) {
+      if (auto it = lines_.find(o.id); it != lines_.end()) ++it->second.observing_frames;
+    }
+  }
+  for (auto it = lines_.begin(); it != lines_.end();) {
+    it = it->second.observing_frames == 0 ? lines_.erase(it) : std::next(it);
+  }
+}
+
+Rigid3d LineSfmWindow::Pose(int age) const { return PoseFromParameters(frames_[frames_.size() - 1 - age].pose); }
+
+void LineSfmWindow::SetNewestPose(const Rigid3d& cam_from_world) { PoseToParameters(cam_from_world, frames_.back().pose); }
+
+PlueckerLine LineSfmWindow::Line(std::int64_t id) const { return LineFromParameters(lines_.at(id).parameters); }
+
+bool LineSfmWindow::SelectProblem(WindowSolveReport* report) {
+  const int n = static_cast<int>(frames_.size());
+  for (FrameState& f : frames_) f.included = true;
+  // Calls `visit(line)` once per line of the map that frame f observes (its observations are
+  // sorted by id, the two images of one id adjacent).
+  auto for_each_line = [&](const FrameState& f, auto visit) {
+    const std::int64_t* previous = nullptr;
+    for (const WindowObservation& o : f.observations) {
+      if (previous != nullptr && *previous == o.id) continue;
+      previous = &o.id;
+      if (auto it = lines_.find(o.id); it != lines_.end()) visit(it->second);
+    }
+  };
+  std::vector<int> parent(n);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (auto& [id, line] : lines_) line.observing_frames = 0;
+    for (const FrameState& f : frames_) {
+      if (f.included) for_each_line(f, [](LineState& line) { ++line.observing_frames; });
+    }
+    for (auto& [id, line] : lines_) line.eligible = line.observing_frames >= options_.min_observation_frames;
+    for (FrameState& f : frames_) {
+      if (!f.included) continue;
+      f.eligible_lines = 0;
+      for_each_line(f, [&](LineState& line) { f.eligible_lines += line.eligible; });
+      if (f.eligible_lines < 2) {
+        f.included = false;
+        changed = true;
+      }
+    }
+    if (changed) continue;
+    // Only the group of frames linked to the newest one through shared lines.
+    std::iota(parent.begin(), parent.end(), 0);
+    for (auto& [id, line] : lines_) line.observing_frames = -1;  // reused: last frame seen in
+    for (int k = 0; k < n; ++k) {
+      if (!frames_[k].included) continue;
+      for_each_line(frames_[k], [&](LineState& line) {
+        if (!line.eligible) return;
+        if (line.observing_frames >= 0) parent[Root(parent, line.observing_frames)] = Root(parent, k);
+        line.observing_frames = k;
+      });
+    }
+    const int newest_root = Root(parent, n - 1);
+    for (int k = 0; k < n; ++k) {
+      if (frames_[k].included && Root(parent, k) != newest_root) {
+        frames_[k].included = false;
+        changed = true;
+      }
+    }
+    // Eligibility is recounted over the remaining frames on the next pass.
+  }
+  const FrameState& newest = frames_.back();
+  for_each_line(newest, [&](LineState& line) { report->newest_lines_too_few_observations += !line.eligible; });
+  const int included = static_cast<int>(std::count_if(frames_.begin(), frames_.end(), [](const FrameState& f) { return f.included; }));
+  report->newest_in_problem = newest.included && included >= 2;
+  if (!report->newest_in_problem) return false;
+  report->frames = included;
+  for_each_line(newest, [&](LineState& line) { report->newest_lines += line.eligible; });
+  for (const WindowObservation& o : newest.observations) {
+    if (auto it = lines_.find(o.id); it != lines_.end() && it->second.eligible) ++report->newest_observations;
+  }
+  return true;
+}
+
+WindowSolveReport LineSfmWindow::Solve() {
+  WindowSolveReport report;
+  if (frames_.empty() || !SelectProblem(&report)) return report;
+
+  // The problem's parameters are copies in one array, poses first, then lines in the order the
+  // residuals meet them: Ceres orders parameter blocks within an elimination group by address,
+  // so this makes the solve independent of where the map's nodes happen to be allocated (and
+  // a failed solve leaves the window as it was).
+  size_t size = 0;
+  for (FrameState& f : frames_) {
+    f.offset = f.included ? static_cast<int>(size) : -1;
+    if (f.included) size += kPoseAmbientSize;
+  }
+  for (auto& [id, line] : lines_) line.offset = -1;
+  for (const FrameState& f : frames_) {
+    if (!f.included) continue;
+    for (const WindowObservation& o : f.observations) {
+      const auto it = lines_.find(o.id);
+      if (it == lines_.end() || !it->second.eligible || it->second.offset >= 0) continue;
+      it->second.offset = static_cast<int>(size);
+      size += kLineAmbientSize;
+    }
+  }
+  workspace_.resize(size);
+  for (const FrameState& f : frames_) {
+    if (f.included) std::copy(f.pose, f.pose + kPoseAmbientSize, workspace_.data() + f.offset);
+  }
+  for (const auto& [id, line] : lines_) {
+    if (line.offset >= 0) std::copy(line.parameters, line.parameters + kLineAmbientSize, workspace_.data() + line.offset);
+  }
+
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
+
+  size_t used = 0;
+  bool gauge_fixed = false;
+  for (const FrameState& f : frames_) {
+    if (!f.included) continue;
+    double* pose = workspace_.data() + f.offset;
+    problem.AddParameterBlock(pose, kPoseAmbientSize, gauge_fixed ? &pose_manifold_ : nullptr);
+    if (!gauge_fixed) problem.SetParameterBlockConstant(pose);
+    gauge_fixed = true;
+    ordering->AddElementToGroup(pose, 1);
+    for (const WindowObservation& o : f.observations) {
+      const auto it = lines_.find(o.id);
+      if (it == lines_.end() || !it->second.eligible) continue;
+      double* line = workspace_.data() + it->second.offset;
+      if (!problem.HasParameterBlock(line)) {
+        problem.AddParameterBlock(line, kLineAmbientSize, &line_manifold_);
+        ordering->AddElementToGroup(line, 0);
+        ++report.lines;
+      }
+      if (used == costs_.size()) {
+        costs_.emplace_back();
+        losses_.emplace_back();
+      }
+      const double weight = options_.length_weighting ? SegmentLength(o.segment) : 1.0;
+      costs_[used].Set(&cameras_[o.left ? 0 : 1], o.segment, weight, options_.sigma_px);
+      ceres::LossFunction* loss = nullptr;
+      if (robust_loss_) {
+        losses_[used].Set(robust_loss_.get(), weight);
+        loss = &losses_[used];
+      }
+      problem.AddResidualBlock(&costs_[used], loss, pose, line);
+      ++used;
+    }
+  }
+  report.residuals = static_cast<int>(used);
+
+  solver_options_.linear_solver_ordering = ordering;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options_, &problem, &summary);
+  solver_options_.linear_solver_ordering.reset();
+  report.termination = summary.termination_type;
+  report.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  report.initial_cost = summary.initial_cost;
+  report.final_cost = summary.final_cost;
+  report.solved = summary.IsSolutionUsable() && Eigen::Map<const Eigen::VectorXd>(workspace_.data(), size).allFinite();
+  if (!report.solved) return report;
+  for (FrameState& f : frames_) {
+    if (f.included) std::copy_n(workspace_.data() + f.offset, kPoseAmbientSize, f.pose);
+  }
+  for (auto& [id, line] : lines_) {
+    if (line.offset >= 0) std::copy_n(workspace_.data() + line.offset, kLineAmbientSize, line.parameters);
+  }
+  return report;
+}
+
+TriangulationReport LineSfmWindow::TriangulateNewLines() {
+  TriangulationReport report;
+  if (frames_.empty()) return report;
+  const std::vector<WindowObservation>& observations = frames_.back().observations;
+  const Rigid3d world_from_cam = Pose(0).Inverse();
+  // Sorted by (id, image): a stereo pair is a left observation followed by a right one.
+  for (size_t i = 0; i + 1 < observations.size(); ++i) {
+    const WindowObservation& left = observations[i];
+    const WindowObservation& right = observations[i + 1];
+    if (left.id != right.id || !left.left || right.left || HasLine(left.id)) continue;
+    double plane_sine = 0.0;
+    const PlueckerLine in_cam = StereoPairLine(
+        rig_.right_from_left, NormalizedLineFromPixelLine(rig_.left, LineFromSegment(left.segment)),
+        NormalizedLineFromPixelLine(rig_.right, LineFromSegment(right.segment)), nullptr, nullptr, &plane_sine);
+    LineState line;
+    if (!(plane_sine >= min_plane_sine_) ||
+        !LineToParameters(TransformPluecker(world_from_cam, in_cam), line.parameters)) {
+      ++report.degenerate;
+      continue;
+    }
+    lines_.emplace(left.id, line);
+    ++report.triangulated;
+  }
+  return report;
+}
+
+}  // namespace slt

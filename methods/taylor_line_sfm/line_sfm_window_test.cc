@@ -1,0 +1,217 @@
+#include "methods/taylor_line_sfm/line_sfm_window.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/se3.h"
+#include "simulator/simulator.h"
+
+namespace slt {
+namespace {
+
+SimulatedSequence NoiseFree(int frames, int lines = 30) {
+  SimulationConfig config;
+  config.seed = 3;
+  config.frames = frames;
+  config.noise.endpoint_px = 0.0;
+  config.scene.paper.lines = lines;
+  return Simulate(config);
+}
+
+Rigid3d TrueCamFromWorld(const SimulatedSequence& sim, int frame) {
+  return sim.ground_truth[frame].world_from_cam.Inverse();
+}
+
+std::vector<WindowObservation> Observations(const StereoFrame& frame) {
+  std::vector<WindowObservation> out;
+  CollectWindowObservations(frame, 5.0, &out);
+  return out;
+}
+
+double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
+  return RotationAngle(a.rotation * b.rotation.transpose()) * 180.0 / M_PI;
+}
+
+// The angle between two lines' directions and the distance between their moments (|d| = 1).
+void ExpectSameLine(const PlueckerLine& a, const PlueckerLine& b, double tolerance) {
+  const double sign = a.direction.dot(b.direction) < 0.0 ? -1.0 : 1.0;
+  const double scale = 1.0 / a.direction.norm(), other = sign / b.direction.norm();
+  EXPECT_LT((a.direction * scale - b.direction * other).norm(), tolerance);
+  EXPECT_LT((a.moment * scale - b.moment * other).norm(), tolerance);
+}
+
+TEST(CollectWindowObservations, SortsByIdThenImageAndDropsWhatCannotBeUsed) {
+  StereoFrame frame;
+  frame.left = {{7, Segment2d(0, 0, 100, 0)},  {3, Segment2d(0, 0, 0, 50)},
+                {5, Segment2d(0, 0, 2, 0)},    // too short
+                {9, Segment2d(0, 0, 50, 50)},  {9, Segment2d(1, 1, 60, 60)},  // twice in one image
+                {4, Segment2d(0, NAN, 50, 50)}};
+  frame.right = {{3, Segment2d(0, 0, 0, 40)}, {9, Segment2d(0, 0, 50, 50)}, {1, Segment2d(10, 0, 90, 0)}};
+  std::vector<WindowObservation> out;
+  CollectWindowObservations(frame, 5.0, &out);
+  ASSERT_EQ(out.size(), 5u);
+  const std::vector<std::pair<std::int64_t, bool>> expected = {{1, false}, {3, true}, {3, false}, {7, true}, {9, false}};
+  for (size_t i = 0; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].id, expected[i].first) << i;
+    EXPECT_EQ(out[i].left, expected[i].second) << i;
+  }
+  EXPECT_EQ(out[1].segment, Segment2d(0, 0, 0, 50));
+}
+
+TEST(LineSfmWindow, TriangulatesNoiseFreeStereoPairsExactly) {
+  const SimulatedSequence sim = NoiseFree(2);
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(sim.sequence.rig);
+  // At a pose other than the identity: the line is mapped to the world with it.
+  window.AddFrame(TrueCamFromWorld(sim, 1), Observations(sim.sequence.frames[1]));
+  const TriangulationReport report = window.TriangulateNewLines();
+  EXPECT_GT(report.triangulated, 20);
+  int stereo_pairs = 0;
+  for (const LineObservation& l : sim.sequence.frames[1].left) {
+    for (const LineObservation& r : sim.sequence.frames[1].right) stereo_pairs += l.id == r.id;
+  }
+  EXPECT_EQ(report.triangulated + report.degenerate, stereo_pairs);
+  ASSERT_EQ(window.NumLines(), report.triangulated);
+  for (size_t id = 0; id < sim.lines.size(); ++id) {
+    if (!window.HasLine(id)) continue;
+    const Line3d& truth = sim.lines[id];
+    ExpectSameLine(window.Line(id), {truth.p.cross(truth.q - truth.p), truth.q - truth.p}, 1e-9);
+  }
+  // Triangulating again adds nothing: every line is known.
+  EXPECT_EQ(window.TriangulateNewLines().triangulated, 0);
+}
+
+TEST(LineSfmWindow, LeavesOutLinesInTheEpipolarPlane) {
+  // A line in the plane y = 0, which holds both camera centres, lies in an epipolar plane of the
+  // x-baseline rig: its two back-projected planes coincide. A line crossing it steeply passes
+  // (planes about 5 deg apart at 1 m).
+  const StereoRig rig;
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(rig);
+  auto observe = [&](std::int64_t id, const Eigen::Vector3d& p, const Eigen::Vector3d& q, StereoFrame* frame) {
+    const Rigid3d& e = rig.right_from_left;
+    frame->left.push_back({id, (Segment2d() << rig.left.Project(p), rig.left.Project(q)).finished()});
+    frame->right.push_back({id, (Segment2d() << rig.right.Project(e * p), rig.right.Project(e * q)).finished()});
+  };
+  StereoFrame frame;
+  observe(1, {-0.3, 0.0, 1.0}, {0.3, 0.0, 1.2}, &frame);   // in the plane y = 0 through both centres
+  observe(2, {-0.1, -0.3, 1.0}, {0.1, 0.3, 1.0}, &frame);  // crosses it
+  window.AddFrame(Rigid3d(), Observations(frame));
+  const TriangulationReport report = window.TriangulateNewLines();
+  EXPECT_EQ(report.degenerate, 1);
+  EXPECT_EQ(report.triangulated, 1);
+  EXPECT_FALSE(window.HasLine(1));
+  EXPECT_TRUE(window.HasLine(2));
+}
+
+TEST(LineSfmWindow, SolveRecoversThePosesFromAPerturbedStartWithTheOldestFixed) {
+  const SimulatedSequence sim = NoiseFree(5);
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(sim.sequence.rig);
+  for (int k = 0; k < 5; ++k) {
+    // Frame 0 exact (the gauge); the others off by about 1 deg and 1 cm.
+    const Vector6d error = k == 0 ? Vector6d::Zero() : (Vector6d() << 0.01, -0.01, 0.01, 0.02, -0.01, 0.015).finished();
+    window.AddFrame(ExpSE3(error) * TrueCamFromWorld(sim, k), Observations(sim.sequence.frames[k]));
+    if (k == 0) window.TriangulateNewLines();
+  }
+  const WindowSolveReport report = window.Solve();
+  ASSERT_TRUE(report.solved);
+  EXPECT_TRUE(report.newest_in_problem);
+  EXPECT_EQ(report.frames, 5);
+  EXPECT_GT(report.newest_lines, 20);
+  EXPECT_EQ(report.newest_lines_too_few_observations, 0);
+  EXPECT_LT(report.final_cost, 1e-12 * report.initial_cost);
+  for (int k = 0; k < 5; ++k) {
+    const Rigid3d estimate = window.Pose(4 - k), truth = TrueCamFromWorld(sim, k);
+    EXPECT_LT(RotationErrorDeg(estimate, truth), 1e-7) << "frame " << k;
+    EXPECT_LT((estimate.translation - truth.translation).norm(), 1e-9) << "frame " << k;
+  }
+  EXPECT_EQ(window.Pose(4).ToMatrix4(), TrueCamFromWorld(sim, 0).ToMatrix4());  // held fixed, bit for bit
+}
+
+TEST(LineSfmWindow, KeepsTheLastKFramesAndTheLinesTheyObserve) {
+  const SimulatedSequence sim = NoiseFree(4);
+  TaylorLineSfmOptions options;
+  options.window_frames = 2;
+  LineSfmWindow window(options);
+  window.Reset(sim.sequence.rig);
+  window.AddFrame(Rigid3d(), Observations(sim.sequence.frames[0]));
+  window.TriangulateNewLines();
+  const int lines = window.NumLines();
+  ASSERT_GT(lines, 2);
+  // Frame 1 observes only two of the lines: the others leave with frame 0 when frame 2 comes.
+  StereoFrame sparse = sim.sequence.frames[1];
+  sparse.left.resize(2);
+  sparse.right.clear();
+  for (const LineObservation& o : sim.sequence.frames[1].right) {
+    if (o.id == sparse.left[0].id || o.id == sparse.left[1].id) sparse.right.push_back(o);
+  }
+  window.AddFrame(TrueCamFromWorld(sim, 1), Observations(sparse));
+  EXPECT_EQ(window.NumFrames(), 2);
+  EXPECT_EQ(window.NumLines(), lines);
+  window.AddFrame(TrueCamFromWorld(sim, 2), {});
+  EXPECT_EQ(window.NumFrames(), 2);
+  EXPECT_EQ(window.NumLines(), 2);
+  EXPECT_TRUE(window.HasLine(sparse.left[0].id));
+}
+
+TEST(LineSfmWindow, AFrameWithOneLineIsNotSolved) {
+  const SimulatedSequence sim = NoiseFree(2);
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(sim.sequence.rig);
+  window.AddFrame(Rigid3d(), Observations(sim.sequence.frames[0]));
+  window.TriangulateNewLines();
+  StereoFrame one = sim.sequence.frames[1];
+  one.left.resize(1);
+  one.right.clear();
+  const Rigid3d guess = TrueCamFromWorld(sim, 1);
+  window.AddFrame(guess, Observations(one));
+  const WindowSolveReport report = window.Solve();
+  EXPECT_FALSE(report.newest_in_problem);
+  EXPECT_FALSE(report.solved);
+  EXPECT_EQ(window.Pose(0).ToMatrix4(), guess.ToMatrix4());
+}
+
+TEST(LineSfmWindow, LinesTriangulatedInTheNewestFrameWaitForASecondFrame) {
+  const SimulatedSequence sim = NoiseFree(3);
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(sim.sequence.rig);
+  // Frame 0 sees only lines with even ids; frame 1 all of them.
+  StereoFrame even = sim.sequence.frames[0];
+  auto odd = [](const LineObservation& o) { return o.id % 2 == 1; };
+  even.left.erase(std::remove_if(even.left.begin(), even.left.end(), odd), even.left.end());
+  even.right.erase(std::remove_if(even.right.begin(), even.right.end(), odd), even.right.end());
+  window.AddFrame(Rigid3d(), Observations(even));
+  window.TriangulateNewLines();
+  window.AddFrame(TrueCamFromWorld(sim, 1), Observations(sim.sequence.frames[1]));
+  window.TriangulateNewLines();  // the odd lines, seen once so far
+  window.AddFrame(TrueCamFromWorld(sim, 2), Observations(sim.sequence.frames[2]));
+  const WindowSolveReport report = window.Solve();
+  ASSERT_TRUE(report.solved);
+  // Every line is now seen in two frames or more.
+  EXPECT_EQ(report.newest_lines_too_few_observations, 0);
+
+  TaylorLineSfmOptions strict;
+  strict.min_observation_frames = 3;
+  LineSfmWindow window3(strict);
+  window3.Reset(sim.sequence.rig);
+  window3.AddFrame(Rigid3d(), Observations(even));
+  window3.TriangulateNewLines();
+  window3.AddFrame(TrueCamFromWorld(sim, 1), Observations(sim.sequence.frames[1]));
+  window3.TriangulateNewLines();
+  window3.AddFrame(TrueCamFromWorld(sim, 2), Observations(sim.sequence.frames[2]));
+  const WindowSolveReport report3 = window3.Solve();
+  ASSERT_TRUE(report3.solved);
+  // The odd lines (triangulated at frame 1) are seen in two frames only; the even ones in three.
+  int odd_known = 0, known = 0;
+  for (const WindowObservation& o : Observations(sim.sequence.frames[2])) {
+    if (!o.left || !window3.HasLine(o.id)) continue;
+    ++known;
+    odd_known += o.id % 2 == 1;
+  }
+  EXPECT_GT(odd_known, 0);
+  EXPECT_EQ(report3.newest_lines_too_few_observations, odd_known);
+  EXPECT_EQ(report3.newest_lines + odd_known, known);
+}
+
+}  // namespace
+}  // namespace slt
