@@ -242,7 +242,8 @@ WindowSolveReport LineSfmWindow::Solve() {
   ceres::Solve(solver_options_, &problem, &summary);
   solver_options_.linear_solver_ordering.reset();
   report.termination = summary.termination_type;
-  report.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  // summary.iterations starts with the initial point (counted as a successful step).
+  report.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
   report.initial_cost = summary.initial_cost;
   report.final_cost = summary.final_cost;
   report.solved = summary.IsSolutionUsable() && Eigen::Map<const Eigen::VectorXd>(workspace_.data(), size).allFinite();

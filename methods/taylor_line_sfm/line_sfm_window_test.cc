@@ -120,12 +120,32 @@ TEST(LineSfmWindow, SolveRecoversThePosesFromAPerturbedStartWithTheOldestFixed) 
   EXPECT_GT(report.newest_lines, 20);
   EXPECT_EQ(report.newest_lines_too_few_observations, 0);
   EXPECT_LT(report.final_cost, 1e-12 * report.initial_cost);
+  EXPECT_GE(report.iterations, 2);
+  EXPECT_LE(report.iterations, TaylorLineSfmOptions().max_iterations);
   for (int k = 0; k < 5; ++k) {
     const Rigid3d estimate = window.Pose(4 - k), truth = TrueCamFromWorld(sim, k);
     EXPECT_LT(RotationErrorDeg(estimate, truth), 1e-7) << "frame " << k;
     EXPECT_LT((estimate.translation - truth.translation).norm(), 1e-9) << "frame " << k;
   }
   EXPECT_EQ(window.Pose(4).ToMatrix4(), TrueCamFromWorld(sim, 0).ToMatrix4());  // held fixed, bit for bit
+}
+
+TEST(LineSfmWindow, ASolveStoppedByTheIterationLimitIsStillUsed) {
+  const SimulatedSequence sim = NoiseFree(3);
+  TaylorLineSfmOptions options;
+  options.max_iterations = 1;
+  LineSfmWindow window(options);
+  window.Reset(sim.sequence.rig);
+  for (int k = 0; k < 3; ++k) {
+    const Vector6d error = k == 0 ? Vector6d::Zero() : Vector6d::Constant(0.01);
+    window.AddFrame(ExpSE3(error) * TrueCamFromWorld(sim, k), Observations(sim.sequence.frames[k]));
+    if (k == 0) window.TriangulateNewLines();
+  }
+  const WindowSolveReport report = window.Solve();
+  EXPECT_EQ(report.iterations, 1);
+  EXPECT_EQ(report.termination, ceres::NO_CONVERGENCE);
+  EXPECT_TRUE(report.solved);
+  EXPECT_LT(report.final_cost, report.initial_cost);
 }
 
 TEST(LineSfmWindow, KeepsTheLastKFramesAndTheLinesTheyObserve) {
