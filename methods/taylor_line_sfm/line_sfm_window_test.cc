@@ -39,6 +39,17 @@ void ExpectSameLine(const PlueckerLine& a, const PlueckerLine& b, double toleran
   EXPECT_LT((a.moment * scale - b.moment * other).norm(), tolerance);
 }
 
+// The first `frames` frames of `sim`, frame 0 exact (the gauge) with its lines triangulated,
+// the others off by about 1 deg and 1 cm.
+void FillPerturbed(const SimulatedSequence& sim, int frames, LineSfmWindow* window) {
+  window->Reset(sim.sequence.rig);
+  for (int k = 0; k < frames; ++k) {
+    const Vector6d error = k == 0 ? Vector6d::Zero() : (Vector6d() << 0.01, -0.01, 0.01, 0.02, -0.01, 0.015).finished();
+    window->AddFrame(ExpSE3(error) * TrueCamFromWorld(sim, k), Observations(sim.sequence.frames[k]));
+    if (k == 0) window->TriangulateNewLines();
+  }
+}
+
 TEST(CollectWindowObservations, SortsByIdThenImageAndDropsWhatCannotBeUsed) {
   StereoFrame frame;
   frame.left = {{7, Segment2d(0, 0, 100, 0)},  {3, Segment2d(0, 0, 0, 50)},
@@ -106,13 +117,7 @@ TEST(LineSfmWindow, LeavesOutLinesInTheEpipolarPlane) {
 TEST(LineSfmWindow, SolveRecoversThePosesFromAPerturbedStartWithTheOldestFixed) {
   const SimulatedSequence sim = NoiseFree(5);
   LineSfmWindow window{TaylorLineSfmOptions()};
-  window.Reset(sim.sequence.rig);
-  for (int k = 0; k < 5; ++k) {
-    // Frame 0 exact (the gauge); the others off by about 1 deg and 1 cm.
-    const Vector6d error = k == 0 ? Vector6d::Zero() : (Vector6d() << 0.01, -0.01, 0.01, 0.02, -0.01, 0.015).finished();
-    window.AddFrame(ExpSE3(error) * TrueCamFromWorld(sim, k), Observations(sim.sequence.frames[k]));
-    if (k == 0) window.TriangulateNewLines();
-  }
+  FillPerturbed(sim, 5, &window);
   const WindowSolveReport report = window.Solve();
   ASSERT_TRUE(report.solved);
   EXPECT_TRUE(report.newest_in_problem);
@@ -135,12 +140,7 @@ TEST(LineSfmWindow, ASolveStoppedByTheIterationLimitIsStillUsed) {
   TaylorLineSfmOptions options;
   options.max_iterations = 1;
   LineSfmWindow window(options);
-  window.Reset(sim.sequence.rig);
-  for (int k = 0; k < 3; ++k) {
-    const Vector6d error = k == 0 ? Vector6d::Zero() : Vector6d::Constant(0.01);
-    window.AddFrame(ExpSE3(error) * TrueCamFromWorld(sim, k), Observations(sim.sequence.frames[k]));
-    if (k == 0) window.TriangulateNewLines();
-  }
+  FillPerturbed(sim, 3, &window);
   const WindowSolveReport report = window.Solve();
   EXPECT_EQ(report.iterations, 1);
   EXPECT_EQ(report.termination, ceres::NO_CONVERGENCE);
