@@ -25,6 +25,14 @@ int Root(std::vector<int>& parent, int i) {
   return i;
 }
 
+// The depth at which the ray through pixel x of `camera` meets the line (given in that camera's
+// frame): X = z r on the line means z (r x d) = n. Exact for a line triangulated from this
+// segment (the ray lies in its back-projected plane); NaN or infinite for a ray along the line.
+double DepthOnLine(const PinholeCamera& camera, const Eigen::Vector2d& x, const PlueckerLine& line) {
+  const Eigen::Vector3d r_cross_d = Homogeneous(camera.PixelToNormalized(x)).cross(line.direction);
+  return r_cross_d.dot(line.moment) / r_cross_d.squaredNorm();
+}
+
 }  // namespace
 
 void CollectWindowObservations(const StereoFrame& frame, double min_segment_length_px,
@@ -108,7 +116,7 @@ bool LineSfmWindow::SelectProblem(WindowSolveReport* report) {
   auto for_each_line = [&](const FrameState& f, auto visit) {
     const std::int64_t* previous = nullptr;
     for (const WindowObservation& o : f.observations) {
-      if (previous != nullptr && *previous == o.id) continue;
+      if (o.outlier || (previous != nullptr && *previous == o.id)) continue;
       previous = &o.id;
       if (auto it = lines_.find(o.id); it != lines_.end()) visit(it->second);
     }
@@ -159,13 +167,67 @@ bool LineSfmWindow::SelectProblem(WindowSolveReport* report) {
   report->frames = included;
   for_each_line(newest, [&](LineState& line) { report->newest_lines += line.eligible; });
   for (const WindowObservation& o : newest.observations) {
-    if (auto it = lines_.find(o.id); it != lines_.end() && it->second.eligible) ++report->newest_observations;
+    if (auto it = lines_.find(o.id); !o.outlier && it != lines_.end() && it->second.eligible) ++report->newest_observations;
   }
   return true;
 }
 
 WindowSolveReport LineSfmWindow::Solve() {
+  WindowSolveReport report = SolveOnce();
+  if (!report.solved || !(options_.outlier_rms_sigma > 0.0)) return report;
+  const int rejected = RejectOutliers(&report);
+  if (rejected == 0) return report;
+  // Once more without the rejected segments (and the dropped lines).
+  WindowSolveReport again = SolveOnce();
+  again.iterations += report.iterations;
+  again.initial_cost = report.initial_cost;
+  again.rejected_observations = report.rejected_observations;
+  again.dropped_lines = report.dropped_lines;
+  again.solves = 2;
+  return again;
+}
+
+int LineSfmWindow::RejectOutliers(WindowSolveReport* report) {
+  // |r|^2 / w = (rms / sigma)^2 (taylor_segment_cost.h).
+  const double threshold = options_.outlier_rms_sigma * options_.outlier_rms_sigma;
+  for (auto& [id, line] : lines_) line.kept = line.rejected = 0;
+  int rejected = 0;
+  for (size_t u = 0; u < residuals_.size(); ++u) {
+    const ResidualRef& ref = residuals_[u];
+    const double* parameters[] = {workspace_.data() + ref.pose_offset, workspace_.data() + ref.line->offset};
+    Eigen::Vector2d r;
+    const bool ok = costs_[u].Evaluate(parameters, r.data(), nullptr);
+    if (ok && r.squaredNorm() <= threshold * ref.weight) {
+      ++ref.line->kept;
+    } else {
+      ref.observation->outlier = true;
+      ++ref.line->rejected;
+      ++rejected;
+    }
+  }
+  report->rejected_observations += rejected;
+  // A line that most of its segments disagree with is more likely wrong than they are (a stereo
+  // pair with an outlier made it): it goes, its segments are judged again, and it is
+  // triangulated anew from its next stereo pair.
+  for (auto it = lines_.begin(); it != lines_.end();) {
+    if (it->second.rejected <= it->second.kept) {
+      ++it;
+      continue;
+    }
+    for (FrameState& f : frames_) {
+      for (WindowObservation& o : f.observations) {
+        if (o.id == it->first) o.outlier = false;
+      }
+    }
+    it = lines_.erase(it);
+    ++report->dropped_lines;
+  }
+  return rejected;
+}
+
+WindowSolveReport LineSfmWindow::SolveOnce() {
   WindowSolveReport report;
+  residuals_.clear();
   if (frames_.empty() || !SelectProblem(&report)) return report;
 
   // The problem's parameters are copies in one array, poses first, then lines in the order the
@@ -182,7 +244,7 @@ WindowSolveReport LineSfmWindow::Solve() {
     if (!f.included) continue;
     for (const WindowObservation& o : f.observations) {
       const auto it = lines_.find(o.id);
-      if (it == lines_.end() || !it->second.eligible || it->second.offset >= 0) continue;
+      if (o.outlier || it == lines_.end() || !it->second.eligible || it->second.offset >= 0) continue;
       it->second.offset = static_cast<int>(size);
       size += kLineAmbientSize;
     }
@@ -204,16 +266,16 @@ WindowSolveReport LineSfmWindow::Solve() {
 
   size_t used = 0;
   bool gauge_fixed = false;
-  for (const FrameState& f : frames_) {
+  for (FrameState& f : frames_) {
     if (!f.included) continue;
     double* pose = workspace_.data() + f.offset;
     problem.AddParameterBlock(pose, kPoseAmbientSize, gauge_fixed ? &pose_manifold_ : nullptr);
     if (!gauge_fixed) problem.SetParameterBlockConstant(pose);
     gauge_fixed = true;
     ordering->AddElementToGroup(pose, 1);
-    for (const WindowObservation& o : f.observations) {
+    for (WindowObservation& o : f.observations) {
       const auto it = lines_.find(o.id);
-      if (it == lines_.end() || !it->second.eligible) continue;
+      if (o.outlier || it == lines_.end() || !it->second.eligible) continue;
       double* line = workspace_.data() + it->second.offset;
       if (!problem.HasParameterBlock(line)) {
         problem.AddParameterBlock(line, kLineAmbientSize, &line_manifold_);
@@ -232,6 +294,7 @@ WindowSolveReport LineSfmWindow::Solve() {
         loss = &losses_[used];
       }
       problem.AddResidualBlock(&costs_[used], loss, pose, line);
+      residuals_.push_back({&o, &it->second, f.offset, weight});
       ++used;
     }
   }
@@ -246,6 +309,7 @@ WindowSolveReport LineSfmWindow::Solve() {
   report.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
   report.initial_cost = summary.initial_cost;
   report.final_cost = summary.final_cost;
+  report.solves = 1;
   report.solved = summary.IsSolutionUsable() && Eigen::Map<const Eigen::VectorXd>(workspace_.data(), size).allFinite();
   if (!report.solved) return report;
   for (FrameState& f : frames_) {
@@ -255,6 +319,14 @@ WindowSolveReport LineSfmWindow::Solve() {
     if (line.offset >= 0) std::copy_n(workspace_.data() + line.offset, kLineAmbientSize, line.parameters);
   }
   return report;
+}
+
+bool LineSfmWindow::InFrontOfBothCameras(const PlueckerLine& in_left, const Segment2d& left,
+                                         const Segment2d& right) const {
+  const PlueckerLine in_right = TransformPluecker(rig_.right_from_left, in_left);
+  return DepthOnLine(rig_.left, left.head<2>(), in_left) > 0.0 && DepthOnLine(rig_.left, left.tail<2>(), in_left) > 0.0 &&
+         DepthOnLine(rig_.right, right.head<2>(), in_right) > 0.0 &&
+         DepthOnLine(rig_.right, right.tail<2>(), in_right) > 0.0;
 }
 
 TriangulationReport LineSfmWindow::TriangulateNewLines() {
@@ -272,7 +344,7 @@ TriangulationReport LineSfmWindow::TriangulateNewLines() {
         rig_.right_from_left, NormalizedLineFromPixelLine(rig_.left, LineFromSegment(left.segment)),
         NormalizedLineFromPixelLine(rig_.right, LineFromSegment(right.segment)), nullptr, nullptr, &plane_sine);
     LineState line;
-    if (!(plane_sine >= min_plane_sine_) ||
+    if (!(plane_sine >= min_plane_sine_) || !InFrontOfBothCameras(in_cam, left.segment, right.segment) ||
         !LineToParameters(TransformPluecker(world_from_cam, in_cam), line.parameters)) {
       ++report.degenerate;
       continue;

@@ -17,8 +17,12 @@
 //
 // Initialisation: a line is triangulated from the stereo pair of the first frame that sees it
 // in both images (geometry/plucker.h StereoPairLine, at that frame's pose); pairs whose
-// back-projected planes meet at less than min_plane_angle_deg (lines near an epipolar plane)
-// are left out, counted, and tried again at the line's next stereo frame.
+// back-projected planes meet at less than min_plane_angle_deg (lines near an epipolar plane),
+// or whose line lies behind a camera at a segment's endpoint, are left out, counted, and tried
+// again at the line's next stereo frame.
+//
+// Outliers (not in Taylor & Kriegman, who fit clean segments): besides the robust loss, the
+// segments a solve leaves far from their lines are rejected and the window solved again (Solve).
 //
 // Known simplification: frames leaving the window are dropped, not marginalised (no prior on
 // the remaining poses and lines carries their information). Lines no frame of the window
@@ -47,6 +51,7 @@ struct WindowObservation {
   std::int64_t id = 0;
   bool left = true;
   Segment2d segment = Segment2d::Zero();
+  bool outlier = false;  // rejected by a solve: left out of the window's later solves
 };
 
 // What a solve did, for the tracker's status and diagnostics.
@@ -61,7 +66,10 @@ struct WindowSolveReport {
   // Lines the newest frame observes that are in the map but seen in too few frames of the
   // window (for instance lines triangulated one frame ago).
   int newest_lines_too_few_observations = 0;
-  int iterations = 0;  // Levenberg-Marquardt steps, successful or not
+  int solves = 0;                 // Ceres runs: 2 when segments were rejected after the first
+  int rejected_observations = 0;  // segments rejected as outliers after the first run
+  int dropped_lines = 0;          // lines dropped with them (to be triangulated again)
+  int iterations = 0;  // Levenberg-Marquardt steps, successful or not, over the runs
   double initial_cost = 0.0;
   double final_cost = 0.0;
   ceres::TerminationType termination = ceres::CONVERGENCE;
@@ -69,7 +77,9 @@ struct WindowSolveReport {
 
 struct TriangulationReport {
   int triangulated = 0;  // new lines added to the map
-  int degenerate = 0;    // stereo pairs left out: planes nearly parallel, or no line
+  // Stereo pairs left out: planes nearly parallel (an epipolar-plane line), no line, or a line
+  // behind one of the cameras (the pair has an outlier).
+  int degenerate = 0;
 };
 
 class LineSfmWindow {
@@ -85,7 +95,11 @@ class LineSfmWindow {
   void AddFrame(const Rigid3d& cam_from_world, std::vector<WindowObservation> observations);
 
   // Builds and solves the window's problem (see the header comment). On a Ceres failure or a
-  // non-finite solution every pose and line keeps its value from before the solve.
+  // non-finite solution every pose and line keeps its value from before the solve. Then, when
+  // outlier_rms_sigma > 0, every segment of the problem whose rms distance to its solved line
+  // exceeds outlier_rms_sigma * sigma_px is marked an outlier for good; a line with more such
+  // segments than others in the window is dropped (its segments judged again later), and the
+  // window is solved once more.
   WindowSolveReport Solve();
 
   // Triangulates the lines of the newest frame seen in both images and not in the map yet, at
@@ -114,10 +128,22 @@ class LineSfmWindow {
     int observing_frames = 0;  // per solve: included frames that observe it
     bool eligible = false;
     int offset = -1;  // of its copy in workspace_, -1 when not in the problem
+    int kept = 0, rejected = 0;  // per solve: its segments judged inliers and outliers
+  };
+  // A residual block of the last problem: costs_[k] belongs to residuals_[k].
+  struct ResidualRef {
+    WindowObservation* observation;
+    LineState* line;
+    int pose_offset;
+    double weight;
   };
 
   // Decides which frames and lines enter the problem; false when the newest frame cannot.
   bool SelectProblem(WindowSolveReport* report);
+  WindowSolveReport SolveOnce();
+  // Marks the outliers of the last problem, drops the lines they outvote; returns the count.
+  int RejectOutliers(WindowSolveReport* report);
+  bool InFrontOfBothCameras(const PlueckerLine& in_left, const Segment2d& left, const Segment2d& right) const;
 
   TaylorLineSfmOptions options_;
   StereoRig rig_;
@@ -136,6 +162,7 @@ class LineSfmWindow {
   std::deque<TaylorSegmentCost> costs_;
   std::deque<WeightedSegmentLoss> losses_;
   std::vector<double> workspace_;
+  std::vector<ResidualRef> residuals_;
 };
 
 // The observations of a stereo frame for the window: segments that are finite and at least

@@ -114,6 +114,26 @@ TEST(LineSfmWindow, LeavesOutLinesInTheEpipolarPlane) {
   EXPECT_TRUE(window.HasLine(2));
 }
 
+TEST(LineSfmWindow, LeavesOutALineBehindTheCameras) {
+  // A vertical line 1 m ahead; in the right image it is moved to the right of its left image,
+  // a negative disparity: the back-projected planes meet behind the cameras.
+  const StereoRig rig;
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(rig);
+  const Eigen::Vector3d p(0.05, -0.2, 1.0), q(0.05, 0.2, 1.0);
+  StereoFrame frame;
+  frame.left.push_back({1, (Segment2d() << rig.left.Project(p), rig.left.Project(q)).finished()});
+  frame.right.push_back({1, frame.left[0].segment + Segment2d(30, 0, 30, 0)});
+  window.AddFrame(Rigid3d(), Observations(frame));
+  const TriangulationReport report = window.TriangulateNewLines();
+  EXPECT_EQ(report.degenerate, 1);
+  EXPECT_FALSE(window.HasLine(1));
+  // With the true disparity (f b / z = 84.9 px to the left) it is triangulated.
+  frame.right[0].segment = frame.left[0].segment - Segment2d(rig.right.fx * 0.1, 0, rig.right.fx * 0.1, 0);
+  window.AddFrame(Rigid3d(), Observations(frame));
+  EXPECT_EQ(window.TriangulateNewLines().triangulated, 1);
+}
+
 TEST(LineSfmWindow, SolveRecoversThePosesFromAPerturbedStartWithTheOldestFixed) {
   const SimulatedSequence sim = NoiseFree(5);
   LineSfmWindow window{TaylorLineSfmOptions()};
@@ -133,6 +153,71 @@ TEST(LineSfmWindow, SolveRecoversThePosesFromAPerturbedStartWithTheOldestFixed) 
     EXPECT_LT((estimate.translation - truth.translation).norm(), 1e-9) << "frame " << k;
   }
   EXPECT_EQ(window.Pose(4).ToMatrix4(), TrueCamFromWorld(sim, 0).ToMatrix4());  // held fixed, bit for bit
+}
+
+// Solves the five frames of `sim` (one segment of line `id` spoilt) from a perturbed start and
+// expects that one segment rejected, the line kept, and the newest pose exact again.
+void ExpectOneSegmentRejected(const SimulatedSequence& sim, std::int64_t id, LineSfmWindow* window) {
+  FillPerturbed(sim, 5, window);
+  const WindowSolveReport report = window->Solve();
+  ASSERT_TRUE(report.solved);
+  EXPECT_EQ(report.solves, 2);
+  EXPECT_EQ(report.rejected_observations, 1);
+  EXPECT_EQ(report.dropped_lines, 0);
+  EXPECT_TRUE(window->HasLine(id));
+  const Rigid3d truth = TrueCamFromWorld(sim, 4);
+  EXPECT_LT(RotationErrorDeg(window->Pose(0), truth), 1e-7);
+  EXPECT_LT((window->Pose(0).translation - truth.translation).norm(), 1e-9);
+}
+
+TEST(LineSfmWindow, RejectsAnOutlierSegmentAndSolvesAgain) {
+  SimulatedSequence sim = NoiseFree(5);
+  // One segment of the newest frame replaced by an unrelated one under the same id.
+  StereoFrame& newest = sim.sequence.frames[4];
+  newest.left[3].segment << 50, 400, 300, 100;
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  ExpectOneSegmentRejected(sim, newest.left[3].id, &window);
+  // The rejected segment stays out of later solves.
+  EXPECT_EQ(window.Solve().rejected_observations, 0);
+}
+
+TEST(LineSfmWindow, AWrongStereoPairLosesItsSegmentNotItsLine) {
+  // Frame 0 triangulates line `id` with its right segment moved by 20 px (a wrong depth);
+  // frames 1-4 see it where it is. The robust solve moves the line to its eight good segments
+  // and rejects the bad one.
+  SimulatedSequence sim = NoiseFree(5);
+  StereoFrame& first = sim.sequence.frames[0];
+  first.right[2].segment += Segment2d(-20, 0, -20, 0);
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  ExpectOneSegmentRejected(sim, first.right[2].id, &window);
+}
+
+TEST(LineSfmWindow, ALineMostOfWhoseSegmentsAreRejectedIsDroppedAndItsSegmentsJudgedAgain) {
+  // A threshold no residual meets rejects every segment: every line of the problem is outvoted
+  // and dropped, the second run has nothing left, and triangulating the newest frame brings the
+  // lines back with their segments usable again.
+  const SimulatedSequence sim = NoiseFree(3);
+  TaylorLineSfmOptions options;
+  options.outlier_rms_sigma = 1e-150;  // squared, still above 0
+  LineSfmWindow window(options);
+  FillPerturbed(sim, 3, &window);
+  const int lines = window.NumLines();
+  const WindowSolveReport report = window.Solve();
+  EXPECT_EQ(report.dropped_lines, lines);
+  EXPECT_EQ(window.NumLines(), 0);
+  EXPECT_FALSE(report.solved);  // the second run: no lines
+  EXPECT_EQ(window.TriangulateNewLines().triangulated, lines);
+  window.AddFrame(TrueCamFromWorld(sim, 2), Observations(sim.sequence.frames[2]));
+  // The next solve uses the segments of frames 0 and 1 again (their rejections were cleared
+  // with the lines), and rejects them again; only segments that fit exactly escape (frame 2 seen
+  // twice at one pose).
+  int old_segments = 0;
+  for (int k : {0, 1}) {
+    for (const WindowObservation& o : Observations(sim.sequence.frames[k])) old_segments += window.HasLine(o.id);
+  }
+  const WindowSolveReport again = window.Solve();
+  EXPECT_GT(again.rejected_observations, old_segments);
+  EXPECT_EQ(again.dropped_lines, lines);
 }
 
 TEST(LineSfmWindow, ASolveStoppedByTheIterationLimitIsStillUsed) {

@@ -40,9 +40,12 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
   const WindowSolveReport& s = last_solve_;
   counters_.lines_too_few_observations += s.newest_lines_too_few_observations;
   if (s.newest_in_problem) {
-    ++counters_.solves;
+    ++counters_.solved_frames;
+    counters_.solves += s.solves;
     counters_.iterations += s.iterations;
     counters_.solve_failures += !s.solved;
+    counters_.rejected_observations += s.rejected_observations;
+    counters_.dropped_lines += s.dropped_lines;
   }
   if (s.solved && s.newest_lines >= 2 && s.newest_observations >= 3) {
     out.cam_from_world = window_.Pose(0);

@@ -10,7 +10,8 @@
 //   2. the frame joins the window of the last K frames (line_sfm_window.h), older frames and
 //      lines no frame observes any more are dropped;
 //   3. Ceres minimises Taylor's error (taylor_segment_cost.h) over the window's poses and lines,
-//      the oldest pose held fixed;
+//      the oldest pose held fixed; segments left far from their lines are rejected and the
+//      window solved once more;
 //   4. lines seen in both images for the first time are triangulated at the solved pose;
 //   5. status: lost when the newest frame has fewer than two usable lines (lines of the problem
 //      it observes), fewer than three segments of them, or the solve failed (a Ceres failure or
@@ -38,9 +39,12 @@ class TaylorLineSfmTracker final : public PoseTracker {
   struct Counters {
     int frames = 0;
     int lost_frames = 0;
-    int solves = 0;           // Ceres runs
-    int solve_failures = 0;   // runs whose solution was not usable (kept the previous state)
-    int iterations = 0;       // Levenberg-Marquardt steps over all solves
+    int solved_frames = 0;    // frames whose window was solved (the newest frame took part)
+    int solves = 0;           // Ceres runs (two on a frame where outliers were rejected)
+    int solve_failures = 0;   // frames whose solution was not usable (kept the previous state)
+    int iterations = 0;       // Levenberg-Marquardt steps over all runs
+    int rejected_observations = 0;  // segments rejected as outliers
+    int dropped_lines = 0;          // lines dropped with them
     int lines_triangulated = 0;
     int degenerate_triangulations = 0;  // stereo pairs left out (near an epipolar plane)
     // Sum over frames of the lines the frame observed that were left out of its solve for too

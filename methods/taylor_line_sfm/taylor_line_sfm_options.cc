@@ -11,6 +11,7 @@ void TaylorLineSfmOptions::Check(const std::string& where, const std::string& pa
   if (!(sigma_px > 0.0)) fail("sigma_px", "must be > 0");
   if (loss != "none" && loss != "huber" && loss != "cauchy") fail("loss", "must be \"none\", \"huber\" or \"cauchy\"");
   if (!(loss_scale > 0.0)) fail("loss_scale", "must be > 0");
+  if (!(outlier_rms_sigma >= 0.0)) fail("outlier_rms_sigma", "must be >= 0 (0 = never reject)");
   if (!(min_segment_length_px >= 0.0)) fail("min_segment_length_px", "must be >= 0");
   if (!(min_plane_angle_deg >= 0.0 && min_plane_angle_deg < 90.0)) fail("min_plane_angle_deg", "must be in [0, 90)");
   if (linear_solver != "dense_schur" && linear_solver != "sparse_schur") {
@@ -31,6 +32,7 @@ void ReadTaylorLineSfmOptions(JsonReader& r, TaylorLineSfmOptions* o) {
       .Get("length_weighting", &o->length_weighting)
       .Get("loss", &o->loss)
       .Get("loss_scale", &o->loss_scale)
+      .Get("outlier_rms_sigma", &o->outlier_rms_sigma)
       .Get("min_segment_length_px", &o->min_segment_length_px)
       .Get("min_plane_angle_deg", &o->min_plane_angle_deg)
       .Get("linear_solver", &o->linear_solver)
@@ -50,6 +52,7 @@ nlohmann::json TaylorLineSfmOptionsToJson(const TaylorLineSfmOptions& o) {
           {"length_weighting", o.length_weighting},
           {"loss", o.loss},
           {"loss_scale", o.loss_scale},
+          {"outlier_rms_sigma", o.outlier_rms_sigma},
           {"min_segment_length_px", o.min_segment_length_px},
           {"min_plane_angle_deg", o.min_plane_angle_deg},
           {"linear_solver", o.linear_solver},
