@@ -3,15 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dataset/association.h"
 #include "geometry/trifocal.h"
 
 namespace slt {
-namespace {
-
-bool ById(const LineObservation& a, const LineObservation& b) { return a.id < b.id; }
-
-}  // namespace
-
 void LineTransferOptions::Check(const std::string& where, const std::string& path) const {
   auto fail = [&](const std::string& key, const std::string& why) { ThrowOptionError(where, path, key, why); };
   if (direction != "current_to_reference" && direction != "reference_to_current") {
@@ -128,15 +123,6 @@ bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamer
   return true;
 }
 
-const std::vector<LineObservation>& LineTransferModel::SortedById(const std::vector<LineObservation>& observations,
-                                                                  std::vector<LineObservation>* scratch) {
-  // Files and the simulator usually list lines by id already: only copy and sort otherwise.
-  if (std::is_sorted(observations.begin(), observations.end(), ById)) return observations;
-  scratch->assign(observations.begin(), observations.end());
-  std::sort(scratch->begin(), scratch->end(), ById);
-  return *scratch;
-}
-
 int LineTransferModel::CountUsable(const std::vector<StereoLine>& lines) {
   return static_cast<int>(std::count_if(lines.begin(), lines.end(), [](const StereoLine& l) { return !l.degenerate; }));
 }
@@ -156,24 +142,14 @@ void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector
   const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
   const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
   out->clear();
-  auto l = left.begin();
-  auto r = right.begin();
-  while (l != left.end() && r != right.end()) {
-    if (l->id < r->id) {
-      ++l;
-    } else if (r->id < l->id) {
-      ++r;
-    } else {
-      StereoLine line;
-      line.id = l->id;
-      if (MakeSegment(l->segment, rig_.left, &line.left) && MakeSegment(r->segment, rig_.right, &line.right)) {
-        line.degenerate = NearEpipolar(line.left);
-        out->push_back(line);
-      }
-      ++l;
-      ++r;
+  JoinById(left, right, [&](size_t l, size_t r) {
+    StereoLine line;
+    line.id = left[l].id;
+    if (MakeSegment(left[l].segment, rig_.left, &line.left) && MakeSegment(right[r].segment, rig_.right, &line.right)) {
+      line.degenerate = NearEpipolar(line.left);
+      out->push_back(line);
     }
-  }
+  });
 }
 
 int LineTransferModel::SetReference(const StereoFrame& frame) {
@@ -195,18 +171,9 @@ int LineTransferModel::SetCurrent(const StereoFrame& frame) {
   CollectStereoLines(frame, &current_);
   current_stereo_ = CountUsable(current_);
   matches_.clear();
-  size_t i = 0, j = 0;
-  while (i < reference_.size() && j < current_.size()) {
-    if (reference_[i].id < current_[j].id) {
-      ++i;
-    } else if (current_[j].id < reference_[i].id) {
-      ++j;
-    } else {
-      matches_.push_back({reference_[i].id, static_cast<int>(i), static_cast<int>(j)});
-      ++i;
-      ++j;
-    }
-  }
+  JoinById(reference_, current_, [&](size_t i, size_t j) {
+    matches_.push_back({reference_[i].id, static_cast<int>(i), static_cast<int>(j)});
+  });
   return static_cast<int>(matches_.size());
 }
 

@@ -113,9 +113,6 @@ class LineTransferModel final : public FeatureModel {
     int current;    // index into current_
   };
 
-  // `observations` if sorted by id, else a sorted copy in *scratch.
-  static const std::vector<LineObservation>& SortedById(const std::vector<LineObservation>& observations,
-                                                        std::vector<LineObservation>* scratch);
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;

@@ -4,14 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "dataset/association.h"
 #include "geometry/line2d.h"
 #include "geometry/se3.h"
 #include "geometry/trifocal.h"
 
 namespace slt {
 namespace {
-
-bool ById(const LineObservation& a, const LineObservation& b) { return a.id < b.id; }
 
 // Pixel projection of a point given in the camera's frame, with d pixel / d point.
 inline Eigen::Vector2d ProjectToPixel(const PinholeCamera& camera, const Eigen::Vector3d& p,
@@ -181,37 +180,25 @@ bool PointTransferModel::Usable(const ReferencePoint& point) const {
 }
 
 void PointTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLinePoints>* out) {
-  left_sorted_.assign(frame.left.begin(), frame.left.end());
-  right_sorted_.assign(frame.right.begin(), frame.right.end());
-  std::sort(left_sorted_.begin(), left_sorted_.end(), ById);
-  std::sort(right_sorted_.begin(), right_sorted_.end(), ById);
+  const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
+  const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
   const double min_length = std::max(options_.min_segment_length_px, 1e-9);
   const auto usable = [&](const Segment2d& s) {
     return s.allFinite() && (s.tail<2>() - s.head<2>()).norm() >= min_length;
   };
   out->clear();
-  auto l = left_sorted_.begin();
-  auto r = right_sorted_.begin();
-  while (l != left_sorted_.end() && r != right_sorted_.end()) {
-    if (l->id < r->id) {
-      ++l;
-    } else if (r->id < l->id) {
-      ++r;
-    } else {
-      if (usable(l->segment) && usable(r->segment)) {
-        StereoLinePoints line;
-        line.id = l->id;
-        line.left_segment = l->segment;
-        line.left = {l->segment.head<2>(), l->segment.tail<2>()};
-        const bool swap =
-            geometric_pairing_ && StereoEndpointsSwapped(geometry_, l->segment, r->segment, options_.pairing_ambiguity_px);
-        line.right = {r->segment.segment<2>(swap ? 2 : 0), r->segment.segment<2>(swap ? 0 : 2)};
-        out->push_back(line);
-      }
-      ++l;
-      ++r;
-    }
-  }
+  JoinById(left, right, [&](size_t i, size_t j) {
+    const Segment2d& l = left[i].segment;
+    const Segment2d& r = right[j].segment;
+    if (!usable(l) || !usable(r)) return;
+    StereoLinePoints line;
+    line.id = left[i].id;
+    line.left_segment = l;
+    line.left = {l.head<2>(), l.tail<2>()};
+    const bool swap = geometric_pairing_ && StereoEndpointsSwapped(geometry_, l, r, options_.pairing_ambiguity_px);
+    line.right = {r.segment<2>(swap ? 2 : 0), r.segment<2>(swap ? 0 : 2)};
+    out->push_back(line);
+  });
 }
 
 int PointTransferModel::SetReference(const StereoFrame& frame) {
@@ -242,24 +229,15 @@ int PointTransferModel::SetCurrent(const StereoFrame& frame) {
     }
   }
   matches_.clear();
-  size_t i = 0, j = 0;
-  while (i < reference_.size() && j < current_.size()) {
-    if (reference_[i].id < current_[j].id) {
-      ++i;
-    } else if (current_[j].id < reference_[i].id) {
-      ++j;
-    } else {
-      const bool swap =
-          geometric_pairing_ && TemporalEndpointsSwapped(reference_[i].left_segment, current_[j].left_segment);
-      for (int k = 0; k < 2; ++k) {
-        const int point = static_cast<int>(2 * i) + k;
-        if (!reference_usable_[point]) continue;
-        matches_.push_back({reference_[i].id, k, point, static_cast<int>(j), swap ? 1 - k : k});
-      }
-      ++i;
-      ++j;
+  JoinById(reference_, current_, [&](size_t i, size_t j) {
+    const bool swap =
+        geometric_pairing_ && TemporalEndpointsSwapped(reference_[i].left_segment, current_[j].left_segment);
+    for (int k = 0; k < 2; ++k) {
+      const int point = static_cast<int>(2 * i) + k;
+      if (!reference_usable_[point]) continue;
+      matches_.push_back({reference_[i].id, k, point, static_cast<int>(j), swap ? 1 - k : k});
     }
-  }
+  });
   return static_cast<int>(matches_.size());
 }
 
