@@ -4,18 +4,15 @@
 #include <cmath>
 #include <numeric>
 
+#include "dataset/association.h"
 #include "geometry/plucker.h"
 
 namespace slt {
 namespace {
 
-bool ByIdThenImage(const WindowObservation& a, const WindowObservation& b) {
-  return a.id < b.id || (a.id == b.id && a.left && !b.left);
-}
-
-bool SameIdAndImage(const WindowObservation& a, const WindowObservation& b) {
-  return a.id == b.id && a.left == b.left;
-}
+// Segments shorter than this (px) are ignored: their direction is noise (as in the EKFs'
+// feature models).
+constexpr double kMinSegmentLengthPx = 5.0;
 
 double SegmentLength(const Segment2d& s) { return (s.tail<2>() - s.head<2>()).norm(); }
 
@@ -35,37 +32,24 @@ double DepthOnLine(const PinholeCamera& camera, const Eigen::Vector2d& x, const 
 
 }  // namespace
 
-void CollectWindowObservations(const StereoFrame& frame, double min_segment_length_px,
+void CollectWindowObservations(const std::vector<LineObservation>& image, std::vector<LineObservation>* scratch,
                                std::vector<WindowObservation>* out) {
   out->clear();
-  for (const LineObservation& o : frame.left) out->push_back({o.id, true, o.segment});
-  for (const LineObservation& o : frame.right) out->push_back({o.id, false, o.segment});
-  std::sort(out->begin(), out->end(), ByIdThenImage);
-  // An id listed twice in one image is ambiguous: every copy goes, whatever its length. Then
-  // the segments too short (or not finite) to fix a direction go.
-  size_t kept = 0;
-  for (size_t begin = 0, end = 0; begin < out->size(); begin = end) {
-    end = begin + 1;
-    while (end < out->size() && SameIdAndImage((*out)[begin], (*out)[end])) ++end;
-    const Segment2d& segment = (*out)[begin].segment;
-    if (end - begin == 1 && segment.allFinite() &&
-        SegmentLength(segment) >= std::max(min_segment_length_px, 1e-9)) {
-      (*out)[kept++] = (*out)[begin];
-    }
+  for (const LineObservation& o : SortedById(image, scratch)) {
+    if (o.segment.allFinite() && SegmentLength(o.segment) >= kMinSegmentLengthPx) out->push_back({o.id, o.segment});
   }
-  out->resize(kept);
 }
 
 LineSfmWindow::LineSfmWindow(const TaylorLineSfmOptions& options) : options_(options) {
   options_.Check();
   min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
-  if (options_.loss == "huber") {
+  if (options_.loss == SegmentLoss::kHuber) {
     robust_loss_ = std::make_unique<ceres::HuberLoss>(options_.loss_scale);
-  } else if (options_.loss == "cauchy") {
+  } else if (options_.loss == SegmentLoss::kCauchy) {
     robust_loss_ = std::make_unique<ceres::CauchyLoss>(options_.loss_scale);
   }
   solver_options_.linear_solver_type =
-      options_.linear_solver == "sparse_schur" ? ceres::SPARSE_SCHUR : ceres::DENSE_SCHUR;
+      options_.linear_solver == WindowLinearSolver::kSparseSchur ? ceres::SPARSE_SCHUR : ceres::DENSE_SCHUR;
   solver_options_.max_num_iterations = options_.max_iterations;
   solver_options_.function_tolerance = options_.function_tolerance;
   solver_options_.gradient_tolerance = options_.gradient_tolerance;
@@ -84,22 +68,48 @@ void LineSfmWindow::Reset(const StereoRig& rig) {
   lines_.clear();
 }
 
-void LineSfmWindow::AddFrame(const Rigid3d& cam_from_world, std::vector<WindowObservation> observations) {
+void LineSfmWindow::AddFrame(const Rigid3d& cam_from_world, std::vector<WindowObservation> left,
+                             std::vector<WindowObservation> right) {
   FrameState& frame = frames_.emplace_back();
   PoseToParameters(cam_from_world, frame.pose);
-  frame.observations = std::move(observations);
+  frame.images[0] = std::move(left);
+  frame.images[1] = std::move(right);
   if (options_.window_frames > 0) {
     while (static_cast<int>(frames_.size()) > options_.window_frames) frames_.pop_front();
   }
+  // Lines no remaining segment observes go (rejected segments count: a line is kept while it is
+  // in view).
   for (auto& [id, line] : lines_) line.observing_frames = 0;
   for (const FrameState& f : frames_) {
-    for (const WindowObservation& o : f.observations) {
-      if (auto it = lines_.find(o.id); it != lines_.end()) ++it->second.observing_frames;
+    for (const std::vector<WindowObservation>& image : f.images) {
+      for (const WindowObservation& o : image) {
+        if (auto it = lines_.find(o.id); it != lines_.end()) ++it->second.observing_frames;
+      }
     }
   }
   for (auto it = lines_.begin(); it != lines_.end();) {
     it = it->second.observing_frames == 0 ? lines_.erase(it) : std::next(it);
   }
+}
+
+template <typename Visit>
+void LineSfmWindow::ForEachLine(const FrameState& f, Visit visit) {
+  ++visit_;
+  for (const std::vector<WindowObservation>& image : f.images) {
+    for (const WindowObservation& o : image) {
+      if (o.outlier) continue;
+      const auto it = lines_.find(o.id);
+      if (it == lines_.end() || it->second.visit == visit_) continue;
+      it->second.visit = visit_;
+      visit(it->second);
+    }
+  }
+}
+
+int LineSfmWindow::KnownLinesInNewest() {
+  int count = 0;
+  if (!frames_.empty()) ForEachLine(frames_.back(), [&](LineState&) { ++count; });
+  return count;
 }
 
 Rigid3d LineSfmWindow::Pose(int age) const { return PoseFromParameters(frames_[frames_.size() - 1 - age].pose); }
@@ -111,28 +121,18 @@ PlueckerLine LineSfmWindow::Line(std::int64_t id) const { return LineFromParamet
 bool LineSfmWindow::SelectProblem(WindowSolveReport* report) {
   const int n = static_cast<int>(frames_.size());
   for (FrameState& f : frames_) f.included = true;
-  // Calls `visit(line)` once per line of the map that frame f observes (its observations are
-  // sorted by id, the two images of one id adjacent).
-  auto for_each_line = [&](const FrameState& f, auto visit) {
-    const std::int64_t* previous = nullptr;
-    for (const WindowObservation& o : f.observations) {
-      if (o.outlier || (previous != nullptr && *previous == o.id)) continue;
-      previous = &o.id;
-      if (auto it = lines_.find(o.id); it != lines_.end()) visit(it->second);
-    }
-  };
   std::vector<int> parent(n);
   for (bool changed = true; changed;) {
     changed = false;
     for (auto& [id, line] : lines_) line.observing_frames = 0;
     for (const FrameState& f : frames_) {
-      if (f.included) for_each_line(f, [](LineState& line) { ++line.observing_frames; });
+      if (f.included) ForEachLine(f, [](LineState& line) { ++line.observing_frames; });
     }
     for (auto& [id, line] : lines_) line.eligible = line.observing_frames >= options_.min_observation_frames;
     for (FrameState& f : frames_) {
       if (!f.included) continue;
       f.eligible_lines = 0;
-      for_each_line(f, [&](LineState& line) { f.eligible_lines += line.eligible; });
+      ForEachLine(f, [&](LineState& line) { f.eligible_lines += line.eligible; });
       if (f.eligible_lines < 2) {
         f.included = false;
         changed = true;
@@ -144,7 +144,7 @@ bool LineSfmWindow::SelectProblem(WindowSolveReport* report) {
     for (auto& [id, line] : lines_) line.observing_frames = -1;  // reused: last frame seen in
     for (int k = 0; k < n; ++k) {
       if (!frames_[k].included) continue;
-      for_each_line(frames_[k], [&](LineState& line) {
+      ForEachLine(frames_[k], [&](LineState& line) {
         if (!line.eligible) return;
         if (line.observing_frames >= 0) parent[Root(parent, line.observing_frames)] = Root(parent, k);
         line.observing_frames = k;
@@ -160,14 +160,17 @@ bool LineSfmWindow::SelectProblem(WindowSolveReport* report) {
     // Eligibility is recounted over the remaining frames on the next pass.
   }
   const FrameState& newest = frames_.back();
-  for_each_line(newest, [&](LineState& line) { report->newest_lines_too_few_observations += !line.eligible; });
+  ForEachLine(newest, [&](LineState& line) { report->newest_lines_too_few_observations += !line.eligible; });
   const int included = static_cast<int>(std::count_if(frames_.begin(), frames_.end(), [](const FrameState& f) { return f.included; }));
   report->newest_in_problem = newest.included && included >= 2;
   if (!report->newest_in_problem) return false;
   report->frames = included;
-  for_each_line(newest, [&](LineState& line) { report->newest_lines += line.eligible; });
-  for (const WindowObservation& o : newest.observations) {
-    if (auto it = lines_.find(o.id); !o.outlier && it != lines_.end() && it->second.eligible) ++report->newest_observations;
+  ForEachLine(newest, [&](LineState& line) { report->newest_lines += line.eligible; });
+  for (const std::vector<WindowObservation>& image : newest.images) {
+    for (const WindowObservation& o : image) {
+      const auto it = lines_.find(o.id);
+      if (!o.outlier && it != lines_.end() && it->second.eligible) ++report->newest_observations;
+    }
   }
   return true;
 }
@@ -215,8 +218,10 @@ int LineSfmWindow::RejectOutliers(WindowSolveReport* report) {
       continue;
     }
     for (FrameState& f : frames_) {
-      for (WindowObservation& o : f.observations) {
-        if (o.id == it->first) o.outlier = false;
+      for (std::vector<WindowObservation>& image : f.images) {
+        for (WindowObservation& o : image) {
+          if (o.id == it->first) o.outlier = false;
+        }
       }
     }
     it = lines_.erase(it);
@@ -242,12 +247,11 @@ WindowSolveReport LineSfmWindow::SolveOnce() {
   for (auto& [id, line] : lines_) line.offset = -1;
   for (const FrameState& f : frames_) {
     if (!f.included) continue;
-    for (const WindowObservation& o : f.observations) {
-      const auto it = lines_.find(o.id);
-      if (o.outlier || it == lines_.end() || !it->second.eligible || it->second.offset >= 0) continue;
-      it->second.offset = static_cast<int>(size);
+    ForEachLine(f, [&](LineState& line) {
+      if (!line.eligible || line.offset >= 0) return;
+      line.offset = static_cast<int>(size);
       size += kLineAmbientSize;
-    }
+    });
   }
   workspace_.resize(size);
   for (const FrameState& f : frames_) {
@@ -273,29 +277,31 @@ WindowSolveReport LineSfmWindow::SolveOnce() {
     if (!gauge_fixed) problem.SetParameterBlockConstant(pose);
     gauge_fixed = true;
     ordering->AddElementToGroup(pose, 1);
-    for (WindowObservation& o : f.observations) {
-      const auto it = lines_.find(o.id);
-      if (o.outlier || it == lines_.end() || !it->second.eligible) continue;
-      double* line = workspace_.data() + it->second.offset;
-      if (!problem.HasParameterBlock(line)) {
-        problem.AddParameterBlock(line, kLineAmbientSize, &line_manifold_);
-        ordering->AddElementToGroup(line, 0);
-        ++report.lines;
+    for (int camera = 0; camera < 2; ++camera) {
+      for (WindowObservation& o : f.images[camera]) {
+        const auto it = lines_.find(o.id);
+        if (o.outlier || it == lines_.end() || !it->second.eligible) continue;
+        double* line = workspace_.data() + it->second.offset;
+        if (!problem.HasParameterBlock(line)) {
+          problem.AddParameterBlock(line, kLineAmbientSize, &line_manifold_);
+          ordering->AddElementToGroup(line, 0);
+          ++report.lines;
+        }
+        if (used == costs_.size()) {
+          costs_.emplace_back();
+          losses_.emplace_back();
+        }
+        const double weight = options_.length_weighting ? SegmentLength(o.segment) : 1.0;
+        costs_[used].Set(&cameras_[camera], o.segment, weight, options_.sigma_px);
+        ceres::LossFunction* loss = nullptr;
+        if (robust_loss_) {
+          losses_[used].Set(robust_loss_.get(), weight);
+          loss = &losses_[used];
+        }
+        problem.AddResidualBlock(&costs_[used], loss, pose, line);
+        residuals_.push_back({&o, &it->second, f.offset, weight});
+        ++used;
       }
-      if (used == costs_.size()) {
-        costs_.emplace_back();
-        losses_.emplace_back();
-      }
-      const double weight = options_.length_weighting ? SegmentLength(o.segment) : 1.0;
-      costs_[used].Set(&cameras_[o.left ? 0 : 1], o.segment, weight, options_.sigma_px);
-      ceres::LossFunction* loss = nullptr;
-      if (robust_loss_) {
-        losses_[used].Set(robust_loss_.get(), weight);
-        loss = &losses_[used];
-      }
-      problem.AddResidualBlock(&costs_[used], loss, pose, line);
-      residuals_.push_back({&o, &it->second, f.offset, weight});
-      ++used;
     }
   }
   report.residuals = static_cast<int>(used);
@@ -332,13 +338,12 @@ bool LineSfmWindow::InFrontOfBothCameras(const PlueckerLine& in_left, const Segm
 TriangulationReport LineSfmWindow::TriangulateNewLines() {
   TriangulationReport report;
   if (frames_.empty()) return report;
-  const std::vector<WindowObservation>& observations = frames_.back().observations;
+  const FrameState& newest = frames_.back();
   const Rigid3d world_from_cam = Pose(0).Inverse();
-  // Sorted by (id, image): a stereo pair is a left observation followed by a right one.
-  for (size_t i = 0; i + 1 < observations.size(); ++i) {
-    const WindowObservation& left = observations[i];
-    const WindowObservation& right = observations[i + 1];
-    if (left.id != right.id || !left.left || right.left || HasLine(left.id)) continue;
+  JoinById(newest.images[0], newest.images[1], [&](size_t l, size_t r) {
+    const WindowObservation& left = newest.images[0][l];
+    const WindowObservation& right = newest.images[1][r];
+    if (HasLine(left.id)) return;
     double plane_sine = 0.0;
     const PlueckerLine in_cam = StereoPairLine(
         rig_.right_from_left, NormalizedLineFromPixelLine(rig_.left, LineFromSegment(left.segment)),
@@ -347,11 +352,11 @@ TriangulationReport LineSfmWindow::TriangulateNewLines() {
     if (!(plane_sine >= min_plane_sine_) || !InFrontOfBothCameras(in_cam, left.segment, right.segment) ||
         !LineToParameters(TransformPluecker(world_from_cam, in_cam), line.parameters)) {
       ++report.degenerate;
-      continue;
+      return;
     }
     lines_.emplace(left.id, line);
     ++report.triangulated;
-  }
+  });
   return report;
 }
 

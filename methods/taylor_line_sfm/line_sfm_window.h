@@ -46,10 +46,9 @@
 
 namespace slt {
 
-// One segment of one frame: the line's id, the image it is in, the segment (px).
+// One segment of one image of a frame: the line's id and the segment (px).
 struct WindowObservation {
   std::int64_t id = 0;
-  bool left = true;
   Segment2d segment = Segment2d::Zero();
   bool outlier = false;  // rejected by a solve: left out of the window's later solves
 };
@@ -59,7 +58,7 @@ struct WindowSolveReport {
   bool solved = false;          // Ceres ran and its solution was finite and usable
   bool newest_in_problem = false;  // the newest frame took part (enough lines, connected)
   int newest_lines = 0;         // lines of the problem observed in the newest frame
-  int newest_observations = 0;  // their segments (one per image)
+  int newest_observations = 0;  // their segments (up to one per image)
   int frames = 0;               // frames in the problem (the fixed one included)
   int lines = 0;                // lines in the problem
   int residuals = 0;
@@ -89,10 +88,11 @@ class LineSfmWindow {
   // Empties the window for a new sequence with this rig.
   void Reset(const StereoRig& rig);
 
-  // Appends the newest frame, with a first guess of its pose and its observations (sorted by
-  // (id, image), at most one per image and id; see CollectWindowObservations), then drops the
-  // frames beyond the window and the lines no remaining frame observes.
-  void AddFrame(const Rigid3d& cam_from_world, std::vector<WindowObservation> observations);
+  // Appends the newest frame, with a first guess of its pose and the observations of its two
+  // images (each sorted by id, CollectWindowObservations), then drops the frames beyond the
+  // window and the lines no remaining frame observes.
+  void AddFrame(const Rigid3d& cam_from_world, std::vector<WindowObservation> left,
+                std::vector<WindowObservation> right);
 
   // Builds and solves the window's problem (see the header comment). On a Ceres failure or a
   // non-finite solution every pose and line keeps its value from before the solve. Then, when
@@ -102,9 +102,11 @@ class LineSfmWindow {
   // window is solved once more.
   WindowSolveReport Solve();
 
-  // Triangulates the lines of the newest frame seen in both images and not in the map yet, at
-  // the newest frame's pose.
+  // Triangulates the lines of the newest frame seen in both images (paired by
+  // dataset/association.h JoinById) and not in the map yet, at the newest frame's pose.
   TriangulationReport TriangulateNewLines();
+  // Lines of the map the newest frame observes (in either image).
+  int KnownLinesInNewest();
 
   int NumFrames() const { return static_cast<int>(frames_.size()); }
   int NumLines() const { return static_cast<int>(lines_.size()); }
@@ -117,7 +119,7 @@ class LineSfmWindow {
  private:
   struct FrameState {
     double pose[kPoseAmbientSize];
-    std::vector<WindowObservation> observations;
+    std::vector<WindowObservation> images[2];  // left, right; each sorted by id
     // Per solve: in the problem, and its lines in the problem.
     bool included = false;
     int eligible_lines = 0;
@@ -129,6 +131,7 @@ class LineSfmWindow {
     bool eligible = false;
     int offset = -1;  // of its copy in workspace_, -1 when not in the problem
     int kept = 0, rejected = 0;  // per solve: its segments judged inliers and outliers
+    int visit = -1;              // ForEachLine's mark
   };
   // A residual block of the last problem: costs_[k] belongs to residuals_[k].
   struct ResidualRef {
@@ -138,6 +141,10 @@ class LineSfmWindow {
     double weight;
   };
 
+  // Calls visit(LineState&) once for every line of the map frame f observes with a segment not
+  // rejected, in either image.
+  template <typename Visit>
+  void ForEachLine(const FrameState& f, Visit visit);
   // Decides which frames and lines enter the problem; false when the newest frame cannot.
   bool SelectProblem(WindowSolveReport* report);
   WindowSolveReport SolveOnce();
@@ -156,6 +163,7 @@ class LineSfmWindow {
 
   std::deque<FrameState> frames_;
   std::unordered_map<std::int64_t, LineState> lines_;
+  int visit_ = 0;  // ForEachLine's current mark
 
   // Reused from solve to solve: residual blocks and losses (the problem does not own them;
   // deques keep their addresses while they grow), and the problem's parameters.
@@ -165,10 +173,10 @@ class LineSfmWindow {
   std::vector<ResidualRef> residuals_;
 };
 
-// The observations of a stereo frame for the window: segments that are finite and at least
-// min_segment_length_px long, sorted by (id, image); an id listed twice in one image is
-// ambiguous and dropped from that image.
-void CollectWindowObservations(const StereoFrame& frame, double min_segment_length_px,
+// The observations of one image for the window: sorted by id (dataset/association.h
+// SortedById, `scratch` for the sorted copy when one is needed), segments that are finite and
+// at least 5 px long (shorter ones fix no direction).
+void CollectWindowObservations(const std::vector<LineObservation>& image, std::vector<LineObservation>* scratch,
                                std::vector<WindowObservation>* out);
 
 }  // namespace slt

@@ -21,10 +21,16 @@ Rigid3d TrueCamFromWorld(const SimulatedSequence& sim, int frame) {
   return sim.ground_truth[frame].world_from_cam.Inverse();
 }
 
-std::vector<WindowObservation> Observations(const StereoFrame& frame) {
+std::vector<WindowObservation> Segments(const std::vector<LineObservation>& image) {
+  std::vector<LineObservation> scratch;
   std::vector<WindowObservation> out;
-  CollectWindowObservations(frame, 5.0, &out);
+  CollectWindowObservations(image, &scratch, &out);
   return out;
+}
+
+// Appends `frame` to the window at `cam_from_world`.
+void Add(const Rigid3d& cam_from_world, const StereoFrame& frame, LineSfmWindow* window) {
+  window->AddFrame(cam_from_world, Segments(frame.left), Segments(frame.right));
 }
 
 double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
@@ -45,27 +51,25 @@ void FillPerturbed(const SimulatedSequence& sim, int frames, LineSfmWindow* wind
   window->Reset(sim.sequence.rig);
   for (int k = 0; k < frames; ++k) {
     const Vector6d error = k == 0 ? Vector6d::Zero() : (Vector6d() << 0.01, -0.01, 0.01, 0.02, -0.01, 0.015).finished();
-    window->AddFrame(ExpSE3(error) * TrueCamFromWorld(sim, k), Observations(sim.sequence.frames[k]));
+    Add(ExpSE3(error) * TrueCamFromWorld(sim, k), sim.sequence.frames[k], window);
     if (k == 0) window->TriangulateNewLines();
   }
 }
 
-TEST(CollectWindowObservations, SortsByIdThenImageAndDropsWhatCannotBeUsed) {
-  StereoFrame frame;
-  frame.left = {{7, Segment2d(0, 0, 100, 0)},  {3, Segment2d(0, 0, 0, 50)},
-                {5, Segment2d(0, 0, 2, 0)},    // too short
-                {9, Segment2d(0, 0, 50, 50)},  {9, Segment2d(1, 1, 60, 60)},  // twice in one image
-                {4, Segment2d(0, NAN, 50, 50)}};
-  frame.right = {{3, Segment2d(0, 0, 0, 40)}, {9, Segment2d(0, 0, 50, 50)}, {1, Segment2d(10, 0, 90, 0)}};
-  std::vector<WindowObservation> out;
-  CollectWindowObservations(frame, 5.0, &out);
-  ASSERT_EQ(out.size(), 5u);
-  const std::vector<std::pair<std::int64_t, bool>> expected = {{1, false}, {3, true}, {3, false}, {7, true}, {9, false}};
-  for (size_t i = 0; i < out.size(); ++i) {
-    EXPECT_EQ(out[i].id, expected[i].first) << i;
-    EXPECT_EQ(out[i].left, expected[i].second) << i;
-  }
-  EXPECT_EQ(out[1].segment, Segment2d(0, 0, 0, 50));
+TEST(CollectWindowObservations, SortsByIdAndDropsWhatCannotBeUsed) {
+  const std::vector<LineObservation> image = {{7, Segment2d(0, 0, 100, 0)},  {3, Segment2d(0, 0, 0, 50)},
+                                              {5, Segment2d(0, 0, 4.9, 0)},  // too short
+                                              {9, Segment2d(0, 0, 50, 50)},  {9, Segment2d(1, 1, 60, 60)},
+                                              {4, Segment2d(0, NAN, 50, 50)}, {6, Segment2d(0, INFINITY, 50, 50)}};
+  const std::vector<WindowObservation> out = Segments(image);
+  // An id listed twice stays twice, in order: the association step (dataset/association.h)
+  // pairs such runs element by element.
+  const std::vector<std::int64_t> expected = {3, 7, 9, 9};
+  ASSERT_EQ(out.size(), expected.size());
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_EQ(out[i].id, expected[i]) << i;
+  EXPECT_EQ(out[0].segment, Segment2d(0, 0, 0, 50));
+  EXPECT_EQ(out[3].segment, Segment2d(1, 1, 60, 60));
+  EXPECT_FALSE(out[0].outlier);
 }
 
 TEST(LineSfmWindow, TriangulatesNoiseFreeStereoPairsExactly) {
@@ -73,7 +77,7 @@ TEST(LineSfmWindow, TriangulatesNoiseFreeStereoPairsExactly) {
   LineSfmWindow window{TaylorLineSfmOptions()};
   window.Reset(sim.sequence.rig);
   // At a pose other than the identity: the line is mapped to the world with it.
-  window.AddFrame(TrueCamFromWorld(sim, 1), Observations(sim.sequence.frames[1]));
+  Add(TrueCamFromWorld(sim, 1), sim.sequence.frames[1], &window);
   const TriangulationReport report = window.TriangulateNewLines();
   EXPECT_GT(report.triangulated, 20);
   int stereo_pairs = 0;
@@ -106,7 +110,7 @@ TEST(LineSfmWindow, LeavesOutLinesInTheEpipolarPlane) {
   StereoFrame frame;
   observe(1, {-0.3, 0.0, 1.0}, {0.3, 0.0, 1.2}, &frame);   // in the plane y = 0 through both centres
   observe(2, {-0.1, -0.3, 1.0}, {0.1, 0.3, 1.0}, &frame);  // crosses it
-  window.AddFrame(Rigid3d(), Observations(frame));
+  Add(Rigid3d(), frame, &window);
   const TriangulationReport report = window.TriangulateNewLines();
   EXPECT_EQ(report.degenerate, 1);
   EXPECT_EQ(report.triangulated, 1);
@@ -124,13 +128,13 @@ TEST(LineSfmWindow, LeavesOutALineBehindTheCameras) {
   StereoFrame frame;
   frame.left.push_back({1, (Segment2d() << rig.left.Project(p), rig.left.Project(q)).finished()});
   frame.right.push_back({1, frame.left[0].segment + Segment2d(30, 0, 30, 0)});
-  window.AddFrame(Rigid3d(), Observations(frame));
+  Add(Rigid3d(), frame, &window);
   const TriangulationReport report = window.TriangulateNewLines();
   EXPECT_EQ(report.degenerate, 1);
   EXPECT_FALSE(window.HasLine(1));
   // With the true disparity (f b / z = 84.9 px to the left) it is triangulated.
   frame.right[0].segment = frame.left[0].segment - Segment2d(rig.right.fx * 0.1, 0, rig.right.fx * 0.1, 0);
-  window.AddFrame(Rigid3d(), Observations(frame));
+  Add(Rigid3d(), frame, &window);
   EXPECT_EQ(window.TriangulateNewLines().triangulated, 1);
 }
 
@@ -207,13 +211,15 @@ TEST(LineSfmWindow, ALineMostOfWhoseSegmentsAreRejectedIsDroppedAndItsSegmentsJu
   EXPECT_EQ(window.NumLines(), 0);
   EXPECT_FALSE(report.solved);  // the second run: no lines
   EXPECT_EQ(window.TriangulateNewLines().triangulated, lines);
-  window.AddFrame(TrueCamFromWorld(sim, 2), Observations(sim.sequence.frames[2]));
+  Add(TrueCamFromWorld(sim, 2), sim.sequence.frames[2], &window);
   // The next solve uses the segments of frames 0 and 1 again (their rejections were cleared
   // with the lines), and rejects them again; only segments that fit exactly escape (frame 2 seen
   // twice at one pose).
   int old_segments = 0;
   for (int k : {0, 1}) {
-    for (const WindowObservation& o : Observations(sim.sequence.frames[k])) old_segments += window.HasLine(o.id);
+    for (const std::vector<LineObservation>* image : {&sim.sequence.frames[k].left, &sim.sequence.frames[k].right}) {
+      for (const WindowObservation& o : Segments(*image)) old_segments += window.HasLine(o.id);
+    }
   }
   const WindowSolveReport again = window.Solve();
   EXPECT_GT(again.rejected_observations, old_segments);
@@ -239,7 +245,7 @@ TEST(LineSfmWindow, KeepsTheLastKFramesAndTheLinesTheyObserve) {
   options.window_frames = 2;
   LineSfmWindow window(options);
   window.Reset(sim.sequence.rig);
-  window.AddFrame(Rigid3d(), Observations(sim.sequence.frames[0]));
+  Add(Rigid3d(), sim.sequence.frames[0], &window);
   window.TriangulateNewLines();
   const int lines = window.NumLines();
   ASSERT_GT(lines, 2);
@@ -250,10 +256,10 @@ TEST(LineSfmWindow, KeepsTheLastKFramesAndTheLinesTheyObserve) {
   for (const LineObservation& o : sim.sequence.frames[1].right) {
     if (o.id == sparse.left[0].id || o.id == sparse.left[1].id) sparse.right.push_back(o);
   }
-  window.AddFrame(TrueCamFromWorld(sim, 1), Observations(sparse));
+  Add(TrueCamFromWorld(sim, 1), sparse, &window);
   EXPECT_EQ(window.NumFrames(), 2);
   EXPECT_EQ(window.NumLines(), lines);
-  window.AddFrame(TrueCamFromWorld(sim, 2), {});
+  window.AddFrame(TrueCamFromWorld(sim, 2), {}, {});
   EXPECT_EQ(window.NumFrames(), 2);
   EXPECT_EQ(window.NumLines(), 2);
   EXPECT_TRUE(window.HasLine(sparse.left[0].id));
@@ -263,13 +269,13 @@ TEST(LineSfmWindow, AFrameWithOneLineIsNotSolved) {
   const SimulatedSequence sim = NoiseFree(2);
   LineSfmWindow window{TaylorLineSfmOptions()};
   window.Reset(sim.sequence.rig);
-  window.AddFrame(Rigid3d(), Observations(sim.sequence.frames[0]));
+  Add(Rigid3d(), sim.sequence.frames[0], &window);
   window.TriangulateNewLines();
   StereoFrame one = sim.sequence.frames[1];
   one.left.resize(1);
   one.right.clear();
   const Rigid3d guess = TrueCamFromWorld(sim, 1);
-  window.AddFrame(guess, Observations(one));
+  Add(guess, one, &window);
   const WindowSolveReport report = window.Solve();
   EXPECT_FALSE(report.newest_in_problem);
   EXPECT_FALSE(report.solved);
@@ -285,11 +291,11 @@ TEST(LineSfmWindow, LinesTriangulatedInTheNewestFrameWaitForASecondFrame) {
   auto odd = [](const LineObservation& o) { return o.id % 2 == 1; };
   even.left.erase(std::remove_if(even.left.begin(), even.left.end(), odd), even.left.end());
   even.right.erase(std::remove_if(even.right.begin(), even.right.end(), odd), even.right.end());
-  window.AddFrame(Rigid3d(), Observations(even));
+  Add(Rigid3d(), even, &window);
   window.TriangulateNewLines();
-  window.AddFrame(TrueCamFromWorld(sim, 1), Observations(sim.sequence.frames[1]));
+  Add(TrueCamFromWorld(sim, 1), sim.sequence.frames[1], &window);
   window.TriangulateNewLines();  // the odd lines, seen once so far
-  window.AddFrame(TrueCamFromWorld(sim, 2), Observations(sim.sequence.frames[2]));
+  Add(TrueCamFromWorld(sim, 2), sim.sequence.frames[2], &window);
   const WindowSolveReport report = window.Solve();
   ASSERT_TRUE(report.solved);
   // Every line is now seen in two frames or more.
@@ -299,19 +305,21 @@ TEST(LineSfmWindow, LinesTriangulatedInTheNewestFrameWaitForASecondFrame) {
   strict.min_observation_frames = 3;
   LineSfmWindow window3(strict);
   window3.Reset(sim.sequence.rig);
-  window3.AddFrame(Rigid3d(), Observations(even));
+  Add(Rigid3d(), even, &window3);
   window3.TriangulateNewLines();
-  window3.AddFrame(TrueCamFromWorld(sim, 1), Observations(sim.sequence.frames[1]));
+  Add(TrueCamFromWorld(sim, 1), sim.sequence.frames[1], &window3);
   window3.TriangulateNewLines();
-  window3.AddFrame(TrueCamFromWorld(sim, 2), Observations(sim.sequence.frames[2]));
+  Add(TrueCamFromWorld(sim, 2), sim.sequence.frames[2], &window3);
   const WindowSolveReport report3 = window3.Solve();
   ASSERT_TRUE(report3.solved);
   // The odd lines (triangulated at frame 1) are seen in two frames only; the even ones in three.
-  int odd_known = 0, known = 0;
-  for (const WindowObservation& o : Observations(sim.sequence.frames[2])) {
-    if (!o.left || !window3.HasLine(o.id)) continue;
-    ++known;
-    odd_known += o.id % 2 == 1;
+  const int known = window3.KnownLinesInNewest();
+  int odd_known = 0;
+  for (std::int64_t id = 1; id < static_cast<std::int64_t>(sim.lines.size()); id += 2) {
+    const auto seen = [id](const std::vector<LineObservation>& image) {
+      return std::any_of(image.begin(), image.end(), [id](const LineObservation& o) { return o.id == id; });
+    };
+    odd_known += window3.HasLine(id) && (seen(sim.sequence.frames[2].left) || seen(sim.sequence.frames[2].right));
   }
   EXPECT_GT(odd_known, 0);
   EXPECT_EQ(report3.newest_lines_too_few_observations, odd_known);

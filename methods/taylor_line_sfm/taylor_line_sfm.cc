@@ -17,11 +17,13 @@ void TaylorLineSfmTracker::Reset(const StereoRig& rig) {
 
 TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
   ++counters_.frames;
-  CollectWindowObservations(frame, options_.min_segment_length_px, &observations_);
+  std::vector<WindowObservation> left, right;
+  CollectWindowObservations(frame.left, &sorted_, &left);
+  CollectWindowObservations(frame.right, &sorted_, &right);
   TrackerOutput out;
   if (!started_) {
     started_ = true;
-    window_.AddFrame(Rigid3d(), std::move(observations_));
+    window_.AddFrame(Rigid3d(), std::move(left), std::move(right));
     const TriangulationReport t = window_.TriangulateNewLines();
     counters_.lines_triangulated += t.triangulated;
     counters_.degenerate_triangulations += t.degenerate;
@@ -31,11 +33,8 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
   }
 
   const Rigid3d previous = window_.Pose(0);
-  for (const WindowObservation& o : observations_) {
-    // Lines with a 3-D estimate, counted once over both images.
-    if (window_.HasLine(o.id) && (&o == observations_.data() || (&o - 1)->id != o.id)) ++out.features_available;
-  }
-  window_.AddFrame(ExpSE3(velocity_) * previous, std::move(observations_));
+  window_.AddFrame(ExpSE3(velocity_) * previous, std::move(left), std::move(right));
+  out.features_available = window_.KnownLinesInNewest();
   last_solve_ = window_.Solve();
   const WindowSolveReport& s = last_solve_;
   counters_.lines_too_few_observations += s.newest_lines_too_few_observations;
@@ -73,7 +72,7 @@ TrackerInfo TaylorLineSfmInfo() {
   info.create = [](const nlohmann::json& json, const std::string& where) -> std::unique_ptr<PoseTracker> {
     JsonReader reader(json, where);
     TaylorLineSfmOptions options;
-    ReadTaylorLineSfmOptions(reader, &options);
+    TaylorLineSfmOptionsSchema().Read(reader, &options);
     reader.RejectUnknownKeys();
     return std::make_unique<TaylorLineSfmTracker>(options);
   };

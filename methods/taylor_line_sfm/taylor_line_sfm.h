@@ -33,7 +33,7 @@ class TaylorLineSfmTracker final : public PoseTracker {
 
   void Reset(const StereoRig& rig) override;
   TrackerOutput Track(const StereoFrame& frame) override;
-  nlohmann::json Options() const override { return TaylorLineSfmOptionsToJson(options_); }
+  nlohmann::json Options() const override { return TaylorLineSfmOptionsSchema().ToJson(options_); }
 
   // Counters since Reset, for tests and diagnostics.
   struct Counters {
@@ -62,7 +62,7 @@ class TaylorLineSfmTracker final : public PoseTracker {
   Vector6d velocity_ = Vector6d::Zero();  // Log(T_t T_{t-1}^-1)
   Counters counters_;
   WindowSolveReport last_solve_;
-  std::vector<WindowObservation> observations_;
+  std::vector<LineObservation> sorted_;  // scratch of CollectWindowObservations
 };
 
 TrackerInfo TaylorLineSfmInfo();

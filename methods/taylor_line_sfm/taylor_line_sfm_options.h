@@ -1,14 +1,16 @@
 // Options of the Taylor & Kriegman baseline (taylor_line_sfm.h): the window, the segment cost,
-// line initialisation and the Ceres solver. Every field has a default; JSON keys are the field
-// names.
+// line initialisation, outliers and the Ceres solver. Every field has a default; its JSON key,
+// range and one-line doc are declared once, in TaylorLineSfmOptionsSchema() (common/options.h).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 
-#include "common/json_reader.h"
+#include "common/options.h"
 
 namespace slt {
+
+enum class SegmentLoss { kNone, kHuber, kCauchy };
+enum class WindowLinearSolver { kDenseSchur, kSparseSchur };
 
 struct TaylorLineSfmOptions {
   // Sliding window: the last window_frames stereo frames (the current one included); 0 = every
@@ -23,16 +25,14 @@ struct TaylorLineSfmOptions {
   // integral (each segment weighs its length in pixels) or every segment once.
   double sigma_px = 1.5;
   bool length_weighting = true;
-  // "none", "huber" or "cauchy", on (rms / sigma)^2 with scale loss_scale (in sigma). Cauchy's
-  // influence falls off for far segments: with 20 % outliers the paper protocol's error at
-  // frame 100 is about half Huber's (docs/baselines.md).
-  std::string loss = "cauchy";
+  // Robust loss on (rms / sigma)^2 with scale loss_scale (in sigma). Cauchy's influence falls
+  // off for far segments: with 20 % outliers the paper protocol's error at frame 100 is about
+  // half Huber's (docs/baselines.md).
+  SegmentLoss loss = SegmentLoss::kCauchy;
   double loss_scale = 3.0;
   // After a solve, segments whose rms distance to their line exceeds this many sigma_px are
   // rejected for good and the window solved once more (0 = never).
   double outlier_rms_sigma = 5.0;
-  // Segments shorter than this (px) are ignored: they fix no direction.
-  double min_segment_length_px = 5.0;
 
   // Stereo triangulation of a new line (geometry/plucker.h StereoPairLine) is degenerate when
   // the two back-projected planes meet at less than this angle (a line near the epipolar
@@ -42,10 +42,10 @@ struct TaylorLineSfmOptions {
   // line in the image, the trifocal-line EKF's min_epipolar_angle_deg.
   double min_plane_angle_deg = 0.5;
 
-  // Ceres: "dense_schur" or "sparse_schur" (lines eliminated first), Levenberg-Marquardt
-  // iterations and tolerances (ceres::Solver::Options), threads (1: deterministic, and the
-  // experiment runner parallelises over trials instead).
-  std::string linear_solver = "dense_schur";
+  // Ceres: linear solver (lines eliminated first), Levenberg-Marquardt iterations and
+  // tolerances (ceres::Solver::Options), threads (1: deterministic, and the experiment runner
+  // parallelises over trials instead).
+  WindowLinearSolver linear_solver = WindowLinearSolver::kDenseSchur;
   int max_iterations = 10;
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;
@@ -60,8 +60,6 @@ struct TaylorLineSfmOptions {
   void Check(const std::string& where = "taylor_line_sfm options", const std::string& path = "") const;
 };
 
-// Reads the fields present in `reader` (keeps defaults for the others) and checks them.
-void ReadTaylorLineSfmOptions(JsonReader& reader, TaylorLineSfmOptions* options);
-nlohmann::json TaylorLineSfmOptionsToJson(const TaylorLineSfmOptions& options);
+const OptionSchema<TaylorLineSfmOptions>& TaylorLineSfmOptionsSchema();
 
 }  // namespace slt
