@@ -185,6 +185,19 @@ void SimulationConfig::Check(const std::string& where) const {
   }
   positive(observation.min_depth_m, "observation.min_depth_m");
 
+  at_least(images.exposure_variation, 0.0, "images.exposure_variation");
+  if (images.exposure_variation >= 1.0) fail("images.exposure_variation", "must be < 1");
+  at_least(images.vignetting, 0.0, "images.vignetting");
+  if (images.vignetting >= 1.0) fail("images.vignetting", "must be < 1");
+  at_least(images.defocus_blur_px, 0.0, "images.defocus_blur_px");
+  if (images.motion_blur_samples < 1 || images.motion_blur_samples > 64) {
+    fail("images.motion_blur_samples", "must be in [1, 64]");
+  }
+  at_least(images.exposure_time_frames, 0.0, "images.exposure_time_frames");
+  if (images.exposure_time_frames > 1.0) fail("images.exposure_time_frames", "must be <= 1");
+  at_least(images.read_noise, 0.0, "images.read_noise");
+  at_least(images.shot_noise, 0.0, "images.shot_noise");
+
   at_least(noise.endpoint_px, 0.0, "noise.endpoint_px");
   if (!(noise.slide_fraction >= 0.0 && noise.slide_fraction < 0.5)) {
     fail("noise.slide_fraction", "must be in [0, 0.5)");
@@ -202,6 +215,7 @@ SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::st
     GetSeedOverride(s, "motion", &c.seeds.motion);
     GetSeedOverride(s, "noise", &c.seeds.noise);
     GetSeedOverride(s, "outliers", &c.seeds.outliers);
+    GetSeedOverride(s, "images", &c.seeds.images);
     s.RejectUnknownKeys();
   }
   r.Get("frames", &c.frames);
@@ -236,6 +250,7 @@ SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::st
   // The scene-dependent defaults: each scene with the motion and observation model it is for.
   c.motion.type = DefaultMotionFor(c.scene.type);
   c.observation.clip_to_image = c.scene.type != SceneType::kPaper;
+  c.observation.occlusion = c.scene.type != SceneType::kPaper;
   {
     JsonReader m = r.Child("motion");
     GetEnum(m, "type", kMotionTypes, &c.motion.type);
@@ -263,6 +278,7 @@ SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::st
   {
     JsonReader o = r.Child("observation");
     o.Get("clip_to_image", &c.observation.clip_to_image)
+        .Get("occlusion", &c.observation.occlusion)
         .Get("min_length_px", &c.observation.min_length_px)
         .Get("min_depth_m", &c.observation.min_depth_m);
     o.RejectUnknownKeys();
@@ -279,6 +295,17 @@ SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::st
     JsonReader o = r.Child("outliers");
     o.Get("rate", &c.outliers.rate);
     o.RejectUnknownKeys();
+  }
+  {
+    JsonReader i = r.Child("images");
+    i.Get("exposure_variation", &c.images.exposure_variation)
+        .Get("vignetting", &c.images.vignetting)
+        .Get("defocus_blur_px", &c.images.defocus_blur_px)
+        .Get("motion_blur_samples", &c.images.motion_blur_samples)
+        .Get("exposure_time_frames", &c.images.exposure_time_frames)
+        .Get("read_noise", &c.images.read_noise)
+        .Get("shot_noise", &c.images.shot_noise);
+    i.RejectUnknownKeys();
   }
   r.RejectUnknownKeys();
   c.Check(where);
@@ -298,7 +325,8 @@ nlohmann::json SimulationConfigToJson(const SimulationConfig& c) {
        {{"scene", SeedToJson(c.seeds.scene)},
         {"motion", SeedToJson(c.seeds.motion)},
         {"noise", SeedToJson(c.seeds.noise)},
-        {"outliers", SeedToJson(c.seeds.outliers)}}},
+        {"outliers", SeedToJson(c.seeds.outliers)},
+        {"images", SeedToJson(c.seeds.images)}}},
       {"frames", c.frames},
       {"frame_rate", c.frame_rate},
       {"rig", StereoRigToJson(c.rig)},
@@ -342,6 +370,7 @@ nlohmann::json SimulationConfigToJson(const SimulationConfig& c) {
           {"wobble_period_frames", forward.wobble_period_frames}}}}},
       {"observation",
        {{"clip_to_image", c.observation.clip_to_image},
+        {"occlusion", c.observation.occlusion},
         {"min_length_px", c.observation.min_length_px},
         {"min_depth_m", c.observation.min_depth_m}}},
       {"noise",
@@ -350,6 +379,14 @@ nlohmann::json SimulationConfigToJson(const SimulationConfig& c) {
         {"endpoints", EndpointModelName(c.noise.endpoints)},
         {"slide_fraction", c.noise.slide_fraction}}},
       {"outliers", {{"rate", c.outliers.rate}}},
+      {"images",
+       {{"exposure_variation", c.images.exposure_variation},
+        {"vignetting", c.images.vignetting},
+        {"defocus_blur_px", c.images.defocus_blur_px},
+        {"motion_blur_samples", c.images.motion_blur_samples},
+        {"exposure_time_frames", c.images.exposure_time_frames},
+        {"read_noise", c.images.read_noise},
+        {"shot_noise", c.images.shot_noise}}},
   };
 }
 
