@@ -42,6 +42,14 @@ struct Projected {
   }
 };
 
+// Texture anti-aliasing: where a pixel spans `footprint` scale units of a texture (far or
+// grazing surfaces) its finest features (0.5 units) would alias into false gradients, so the
+// pattern's contrast fades as 1 / (1 + (footprint / 0.2)^2), a cheap stand-in for mipmapping.
+inline double TextureFade(double footprint) {
+  const double r = footprint / 0.2;
+  return 1.0 / (1.0 + r * r);
+}
+
 // The light's direction (towards it) in the world: above (y down), a little to the right and
 // behind the camera at frame 0.
 const Eigen::Vector3d kLight = Eigen::Vector3d(0.3, -0.85, -0.43).normalized();
@@ -231,7 +239,11 @@ void SurfaceRasterizer::Render(const PinholeCamera& camera, int width, int heigh
     if (p.contrast == 0.0 || !(w > 0.0)) return p.brightness;
     const double s = (p.s_times_w[0] * u + p.s_times_w[1] * v + p.s_times_w[2]) / w;
     const double t = (p.t_times_w[0] * u + p.t_times_w[1] * v + p.t_times_w[2]) / w;
-    return p.brightness * (1.0 + p.contrast * textures_.Sample(p.pattern, s, t));
+    const double footprint =
+        std::max({std::abs(p.s_times_w[0] - s * p.inverse_depth[0]), std::abs(p.s_times_w[1] - s * p.inverse_depth[1]),
+                  std::abs(p.t_times_w[0] - t * p.inverse_depth[0]), std::abs(p.t_times_w[1] - t * p.inverse_depth[1])}) /
+        w;
+    return p.brightness * (1.0 + p.contrast * TextureFade(footprint) * textures_.Sample(p.pattern, s, t));
   };
   radiance->create(height, width, CV_32FC1);
   for (int y = 0; y < height; ++y) {
@@ -252,8 +264,14 @@ void SurfaceRasterizer::Render(const PinholeCamera& camera, int width, int heigh
         double sw = p.s_times_w[0] * x + p.s_times_w[1] * y + p.s_times_w[2];
         double tw = p.t_times_w[0] * x + p.t_times_w[1] * y + p.t_times_w[2];
         for (int i = x; i < end; ++i) {
-          const double inv = 1.0 / w;
-          out[i] = static_cast<float>(p.brightness * (1.0 + p.contrast * textures_.Sample(p.pattern, sw * inv, tw * inv)));
+          const double inv = 1.0 / w, s = sw * inv, t = tw * inv;
+          // The texture's footprint: scale units per pixel (derivatives of s = S / w and t).
+          const double footprint = std::max({std::abs(p.s_times_w[0] - s * p.inverse_depth[0]),
+                                             std::abs(p.s_times_w[1] - s * p.inverse_depth[1]),
+                                             std::abs(p.t_times_w[0] - t * p.inverse_depth[0]),
+                                             std::abs(p.t_times_w[1] - t * p.inverse_depth[1])}) * inv;
+          out[i] = static_cast<float>(p.brightness * (1.0 + p.contrast * TextureFade(footprint) *
+                                                               textures_.Sample(p.pattern, s, t)));
           w += p.inverse_depth[0];
           sw += p.s_times_w[0];
           tw += p.t_times_w[0];

@@ -49,10 +49,10 @@ TextureBank::TextureBank() {
   AddValueNoise(16, 16, 0.3f, HashName("mottled-2"), &mottled);
   AddValueNoise(8, 8, 0.2f, HashName("mottled-3"), &mottled);
   NormalizeToUnit(&mottled);
-  // Grain: streaks along s, 8 to 16 times longer than wide.
+  // Grain: streaks along s, 8 times longer than wide.
   std::vector<float>& grain = tiles_[static_cast<int>(TexturePattern::kGrain)];
-  AddValueNoise(64, 4, 0.6f, HashName("grain-1"), &grain);
-  AddValueNoise(32, 2, 0.4f, HashName("grain-2"), &grain);
+  AddValueNoise(64, 8, 0.6f, HashName("grain-1"), &grain);
+  AddValueNoise(32, 4, 0.4f, HashName("grain-2"), &grain);
   NormalizeToUnit(&grain);
 }
 

@@ -29,11 +29,12 @@ struct Wall {
 // Texture presets: the contrasts are kept well below the steps between surfaces, so that the
 // edges of the scene are its strongest gradients.
 SurfaceTexture Paint(double albedo) { return {albedo, 0.05, TexturePattern::kMottled, 0.4, 0}; }
-SurfaceTexture Wood(double albedo) { return {albedo, 0.12, TexturePattern::kGrain, 0.05, 0}; }
+SurfaceTexture Wood(double albedo) { return {albedo, 0.1, TexturePattern::kGrain, 0.05, 0}; }
 SurfaceTexture Cardboard(double albedo) { return {albedo, 0.08, TexturePattern::kMottled, 0.03, 0}; }
 SurfaceTexture Flat(double albedo) { return {albedo, 0.0, TexturePattern::kFlat, 0.1, 0}; }
-// Lamps shine: an albedo above 1 stands for their own light (the image saturates there).
-constexpr double kLampAlbedo = 2.5;
+// Lamps shine: an albedo above 1 stands for their own light (kept below saturation, which
+// would move their edges).
+constexpr double kLampAlbedo = 1.05;
 
 class SceneBuilder {
  public:
@@ -142,16 +143,15 @@ class SceneBuilder {
     if (bottom_frame) {
       Add({at(a1, b0), at(ia1, ib0), at(ia0, ib0), at(a0, b0)}, w.inward, frame, 0b1010u, origin, w.along, kUp);
     }
-    // Reveals: left, top, right, bottom (the bottom one only above the floor).
+    // Reveals: left, top, right.
     const double r = -recess;
     Rect(Wall{at(ia0, 0.0), w.inward * -1.0, w.along}, 0.0, ib0, recess, ib1, 0.0, frame);
     Add({at(ia0, ib1), at(ia1, ib1), at(ia1, ib1, r), at(ia0, ib1, r)}, -kUp, frame, kAllEdges, origin, w.along,
         w.inward);
     Rect(Wall{at(ia1, 0.0, r), w.inward, -w.along}, 0.0, ib0, recess, ib1, 0.0, frame);
-    if (bottom_frame) {
-      Add({at(ia0, ib0), at(ia1, ib0), at(ia1, ib0, r), at(ia0, ib0, r)}, kUp, frame, kAllEdges, origin, w.along,
-          w.inward);
-    }
+    // The sill of a window, the threshold of a door (which closes the floor under the recess).
+    Add({at(ia0, ib0), at(ia1, ib0), at(ia1, ib0, r), at(ia0, ib0, r)}, kUp, frame, kAllEdges, origin, w.along,
+        w.inward);
     Rect(w, ia0, ib0, ia1, ib1, r, leaf);
   }
 
