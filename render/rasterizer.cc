@@ -15,6 +15,7 @@ constexpr double kNearDepth = 1e-3;
 constexpr int kMaxVertices = 16;
 // Samples per side of the supersampling grid where corners or several boundaries meet.
 constexpr int kSupersample = 8;
+constexpr double kSpanSlack = 1e-6;
 
 using Polygon2d = std::array<Eigen::Vector2d, kMaxVertices>;
 
@@ -201,24 +202,27 @@ void SurfaceRasterizer::Render(const PinholeCamera& camera, int width, int heigh
       v_min = std::min(v_min, p.pixels[i].y());
       v_max = std::max(v_max, p.pixels[i].y());
     }
-    const int y0 = std::max(0, static_cast<int>(std::ceil(v_min)));
-    const int y1 = std::min(height - 1, static_cast<int>(std::floor(v_max)));
+    // Spans are widened by kSpanSlack px, so that a pixel centre on the edge shared by two
+    // polygons is not missed by both through rounding (the z-buffer settles the overlap).
+    const int y0 = std::max(0, static_cast<int>(std::ceil(v_min - kSpanSlack)));
+    const int y1 = std::min(height - 1, static_cast<int>(std::floor(v_max + kSpanSlack)));
     for (int y = y0; y <= y1; ++y) {
       double x_left = std::numeric_limits<double>::infinity(), x_right = -x_left;
       for (int i = 0; i < p.vertex_count; ++i) {
         const Eigen::Vector2d &a = p.pixels[i], &b = p.pixels[(i + 1) % p.vertex_count];
-        if ((a.y() - y) * (b.y() - y) > 0.0) continue;
+        if (std::min(a.y(), b.y()) > y + kSpanSlack || std::max(a.y(), b.y()) < y - kSpanSlack) continue;
         if (a.y() == b.y()) {
           x_left = std::min({x_left, a.x(), b.x()});
           x_right = std::max({x_right, a.x(), b.x()});
         } else {
-          const double x = a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+          const double f = std::clamp((y - a.y()) / (b.y() - a.y()), 0.0, 1.0);
+          const double x = a.x() + f * (b.x() - a.x());
           x_left = std::min(x_left, x);
           x_right = std::max(x_right, x);
         }
       }
-      const int x0 = std::max(0, static_cast<int>(std::ceil(x_left)));
-      const int x1 = std::min(width - 1, static_cast<int>(std::floor(x_right)));
+      const int x0 = std::max(0, static_cast<int>(std::ceil(x_left - kSpanSlack)));
+      const int x1 = std::min(width - 1, static_cast<int>(std::floor(x_right + kSpanSlack)));
       if (x0 > x1) continue;
       float* depth_row = inverse_depth.data() + static_cast<std::size_t>(y) * width;
       int* id_row = ids.ptr<int>(y);

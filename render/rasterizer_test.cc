@@ -144,3 +144,109 @@ TEST(Rasterizer, PaperEdgesLieOnTheProjectedSegments) { CheckSceneEdges("paper")
 
 }  // namespace
 }  // namespace slt
+
+namespace slt {
+namespace {
+
+// A square [x0, x1] x [y0, y1] at depth z facing the camera at the origin, flat albedo.
+Surface FlatSquare(double x0, double y0, double x1, double y1, double z, double albedo) {
+  return MakeSurface({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, -Eigen::Vector3d::UnitZ(),
+                     {albedo, 0.0, TexturePattern::kFlat, 0.1, 0});
+}
+
+TEST(Rasterizer, AnOccludedSegmentIsNotDrawnNorVisible) {
+  // A bright square at 2 m on a wall at 3 m; a dark panel at 1 m hides the left half of the
+  // square's top edge (y = -0.2).
+  const std::vector<Surface> surfaces = {FlatSquare(-5, -5, 5, 5, 3.0, 0.4), FlatSquare(-0.4, -0.2, 0.4, 0.3, 2.0, 0.9),
+                                         FlatSquare(-0.5, -0.5, 0.0, 0.0, 1.0, 0.2)};
+  const Line3d top{{-0.4, -0.2, 2.0}, {0.4, -0.2, 2.0}};
+  std::vector<Eigen::Vector2d> parts;
+  Occluders(surfaces).VisibleParts(Eigen::Vector3d::Zero(), top.p, top.q, &parts);
+  // The panel's right side (x = 0 at 1 m) hides x < 0 at 2 m: the left half.
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_NEAR(parts[0][0], 0.5, 1e-8);  // the occluder's 1e-9 m inside margin
+  EXPECT_EQ(parts[0][1], 1.0);
+
+  const PinholeCamera camera;
+  cv::Mat radiance;
+  SurfaceRasterizer(surfaces).Render(camera, 640, 480, Rigid3d::Identity(), &radiance);
+  const double v = camera.Project(top.p).y();
+  // The vertical step across the edge: none on the hidden half (the panel is uniform there),
+  // the full step on the visible half.
+  for (const double x : {-0.35, -0.25, -0.15, -0.05, 0.05, 0.15, 0.25, 0.35}) {
+    const Eigen::Vector2d u = camera.Project(Eigen::Vector3d(x, -0.2, 2.0));
+    const int column = static_cast<int>(std::lround(u.x()));
+    const double step = radiance.at<float>(static_cast<int>(v) + 3, column) - radiance.at<float>(static_cast<int>(v) - 3, column);
+    if (x < 0.0) {
+      EXPECT_EQ(step, 0.0) << x;
+    } else {
+      EXPECT_GT(step, 0.2) << x;
+    }
+  }
+}
+
+TEST(Rasterizer, TexturedPointsAppearAtTheDisparityOfTheirDepth) {
+  // The left image's texture seen from the right camera: a point of depth Z is at disparity
+  // fx B / Z in this rectified rig; radiance is view-independent, so the right image holds the
+  // same value there (up to interpolation), and a disparity 2 px off does not.
+  const SimulationConfig config = SharpConfig("room", 2);
+  const SimulatedSequence sequence = Simulate(config);
+  const SequenceRenderer renderer(sequence, config);
+  cv::Mat left, right, left_ids, right_ids;
+  renderer.Rasterizer().Render(config.rig.left, 640, 480, renderer.CamFromWorld(0, 0), &left, &left_ids);
+  renderer.Rasterizer().Render(config.rig.right, 640, 480, renderer.CamFromWorld(0, 1), &right, &right_ids);
+  const auto bilinear = [](const cv::Mat& m, double x, double y) {
+    const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
+    const double fx = x - i, fy = y - j;
+    return (1 - fy) * ((1 - fx) * m.at<float>(j, i) + fx * m.at<float>(j, i + 1)) +
+           fy * ((1 - fx) * m.at<float>(j + 1, i) + fx * m.at<float>(j + 1, i + 1));
+  };
+  double error = 0.0, wrong = 0.0;
+  int points = 0;
+  for (int y = 20; y < 460; y += 7) {
+    for (int x = 60; x < 620; x += 7) {
+      const int id = left_ids.at<int>(y, x);
+      bool interior = id >= 0;
+      for (int dy = -3; dy <= 3 && interior; ++dy) {
+        for (int dx = -3; dx <= 3 && interior; ++dx) interior = left_ids.at<int>(y + dy, x + dx) == id;
+      }
+      if (!interior || sequence.surfaces[id].texture.contrast == 0.0) continue;
+      // Depth from the surface's plane: n . (z r) = d in the left camera.
+      const Surface& s = sequence.surfaces[id];
+      const Eigen::Vector3d ray((x - config.rig.left.cx) / config.rig.left.fx,
+                                (y - config.rig.left.cy) / config.rig.left.fy, 1.0);
+      const double z = s.normal.dot(s.vertices[0]) / s.normal.dot(ray);  // world = left camera at frame 0
+      const double disparity = config.rig.left.fx * config.rig.Baseline() / z;
+      const double xr = x - disparity;
+      if (xr < 3 || right_ids.at<int>(y, static_cast<int>(std::lround(xr))) != id) continue;
+      error += std::abs(bilinear(right, xr, y) - left.at<float>(y, x));
+      wrong += std::abs(bilinear(right, xr - 2.0, y) - left.at<float>(y, x));
+      ++points;
+    }
+  }
+  ASSERT_GT(points, 500);
+  EXPECT_LT(error / points, 0.002);  // radiance units (1 = white)
+  EXPECT_GT(wrong / points, 3.0 * error / points);
+}
+
+TEST(Rasterizer, StructuredScenesAreClosed) {
+  // Every pixel of every image sees a surface: no gaps in the walls, floors or openings.
+  for (const char* scene : {"room", "corridor"}) {
+    const SimulationConfig config = SharpConfig(scene, 100);
+    const SimulatedSequence sequence = Simulate(config);
+    const SequenceRenderer renderer(sequence, config);
+    for (const int k : {0, 50, 99}) {
+      for (int camera = 0; camera < 2; ++camera) {
+        cv::Mat radiance, ids;
+        renderer.Rasterizer().Render(camera == 0 ? config.rig.left : config.rig.right, 640, 480,
+                                     renderer.CamFromWorld(k, camera), &radiance, &ids);
+        double lowest = 0.0;
+        cv::minMaxLoc(ids, &lowest);
+        EXPECT_GE(lowest, 0.0) << scene << " frame " << k << " camera " << camera;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace slt
