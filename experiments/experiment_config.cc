@@ -1,5 +1,6 @@
 #include "experiments/experiment_config.h"
 
+#include <algorithm>
 #include <charconv>
 #include <set>
 
@@ -172,6 +173,30 @@ SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& w
   }
 }
 
+OrderingCheck ReadOrdering(const ExperimentConfig& c, const nlohmann::json& j, const std::string& where,
+                           const std::string& key) {
+  JsonReader reader(j, where, key);
+  OrderingCheck o;
+  reader.Get("better", &o.better).Get("worse", &o.worse);
+  if (const nlohmann::json* at = reader.Find("at")) o.at = *at;
+  reader.RejectUnknownKeys();
+  for (const char* side : {"better", "worse"}) {
+    const std::string& id = std::string(side) == "better" ? o.better : o.worse;
+    bool found = false;
+    for (const MethodSpec& m : c.methods) found = found || m.Id() == id;
+    if (!found) reader.Fail(side, "'" + id + "' is not the id of a method of this config");
+  }
+  if (!o.at.is_object()) reader.Fail("at", "expected an object {\"<swept parameter>\": value}");
+  for (const auto& [parameter, value] : o.at.items()) {
+    bool found = false;
+    for (const SweepAxis& a : c.sweep) {
+      found = found || (a.parameter == parameter && std::find(a.values.begin(), a.values.end(), value) != a.values.end());
+    }
+    if (!found) reader.Fail("at", parameter + " = " + value.dump() + " is not a value of a swept parameter");
+  }
+  return o;
+}
+
 nlohmann::json ToJson(const MethodSpec& m) {
   return {{"name", m.name}, {"label", m.label}, {"options", m.options}};
 }
@@ -179,6 +204,8 @@ nlohmann::json ToJson(const MethodSpec& m) {
 nlohmann::json ToJson(const SweepAxis& a) {
   return {{"parameter", a.parameter}, {"values", a.values}, {"label", a.label}};
 }
+
+nlohmann::json ToJson(const OrderingCheck& o) { return {{"better", o.better}, {"worse", o.worse}, {"at", o.at}}; }
 
 nlohmann::json ToJson(const PlotSpec& p) {
   return {{"kind", p.kind}, {"file", p.file},   {"title", p.title}, {"yscale", p.yscale},
@@ -262,11 +289,9 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
       if (c.plots[k].file == c.plots[i].file) ThrowOptionError(where, Indexed("plots", i), "file", "used twice");
     }
   }
-  reader.Get("expect_best", &c.expect_best);
-  if (!c.expect_best.empty()) {
-    bool found = false;
-    for (const MethodSpec& m : c.methods) found = found || m.Id() == c.expect_best;
-    if (!found) reader.Fail("expect_best", "'" + c.expect_best + "' is not the id of a method of this config");
+  if (const nlohmann::json* pairs = reader.Find("expect_better")) {
+    if (!pairs->is_array()) reader.Fail("expect_better", "expected an array of {\"better\", \"worse\", \"at\"}");
+    for (size_t i = 0; i < pairs->size(); ++i) c.expect_better.push_back(ReadOrdering(c, (*pairs)[i], where, Indexed("expect_better", i)));
   }
   reader.Find("resolved");  // output only (ResolvedConfigJson): ignored on input
   reader.RejectUnknownKeys();
@@ -304,10 +329,13 @@ nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
   j["trials"] = c.trials;
   j["seed"] = c.seed;
   j["simulation"] = c.simulation;
-  j["sweep"] = nlohmann::json::array();
-  for (const SweepAxis& a : c.sweep) j["sweep"].push_back(ToJson(a));
-  j["methods"] = nlohmann::json::array();
-  for (const MethodSpec& m : c.methods) j["methods"].push_back(ToJson(m));
+  const auto array_of = [](const auto& items) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const auto& item : items) array.push_back(ToJson(item));
+    return array;
+  };
+  j["sweep"] = array_of(c.sweep);
+  j["methods"] = array_of(c.methods);
   if (c.metrics_frame < 0) {
     j["metrics_frame"] = "last";
   } else {
@@ -316,9 +344,8 @@ nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
   j["per_frame_curves"] = c.per_frame_curves;
   j["save_trajectories"] = c.save_trajectories;
   j["table_metrics"] = c.table_metrics;
-  j["plots"] = nlohmann::json::array();
-  for (const PlotSpec& p : c.plots) j["plots"].push_back(ToJson(p));
-  j["expect_best"] = c.expect_best;
+  j["plots"] = array_of(c.plots);
+  j["expect_better"] = array_of(c.expect_better);
   return j;
 }
 
