@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/json_reader.h"
+#include "geometry/se3.h"
 
 namespace slt {
 namespace {

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/json_reader.h"
+#include "common/options.h"
 #include "common/random.h"
 #include "experiments/trial_result.h"
 #include "methods/pose_tracker.h"
@@ -12,11 +13,21 @@
 namespace slt {
 namespace {
 
-const std::set<std::string> kPlotKinds = {"sweep", "grid", "curves", "trajectory"};
-
 std::string Indexed(const std::string& key, size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
 bool IsScalar(const nlohmann::json& v) { return v.is_number() || v.is_string() || v.is_boolean(); }
+
+// An error of a part read on its own (tracker options, a simulation), moved under `key` of this
+// file: "<where>: key '<key>.<its key>': ..." (with `suffix` appended).
+[[noreturn]] void RethrowUnder(const ConfigError& e, const std::string& where, const std::string& key,
+                               const std::string& suffix = "") {
+  const std::string message = e.what();
+  const std::string prefix = where + ": key '";
+  if (message.compare(0, prefix.size(), prefix) == 0) {
+    throw ConfigError(prefix + key + "." + message.substr(prefix.size()) + suffix);
+  }
+  throw ConfigError(prefix + key + "': " + message + suffix);
+}
 
 MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const std::string& key) {
   MethodSpec method;
@@ -45,13 +56,7 @@ MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const s
   try {
     CreateTracker(method.name, method.options, where);
   } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    const std::string prefix = where + ": key '";
-    const std::string options_key = j.is_object() ? key + ".options" : key;
-    if (message.compare(0, prefix.size(), prefix) == 0) {
-      throw ConfigError(prefix + options_key + "." + message.substr(prefix.size()));
-    }
-    throw ConfigError(where + ": key '" + options_key + "': " + message);
+    RethrowUnder(e, where, j.is_object() ? key + ".options" : key);
   }
   return method;
 }
@@ -99,20 +104,30 @@ SweepAxis ReadAxis(const nlohmann::json& j, const std::string& where, const std:
   return axis;
 }
 
+const OptionSchema<PlotSpec>& PlotSchema() {
+  using P = PlotSpec;
+  static const OptionSchema<P> schema =
+      OptionSchema<P>()
+          .Field("kind", &P::kind, {"sweep", "grid", "curves", "trajectory"}, "what is drawn")
+          .Field("file", &P::file, {}, "PNG file name in the output directory")
+          .Field("title", &P::title, {}, "figure title (default: the experiment's)")
+          .Field("yscale", &P::yscale, {"linear", "log"}, "error axis")
+          .Field("band", &P::band, "shade the 95 % interval over trials")
+          .Field("lines", &P::lines, {"methods", "sweep"}, "grid: one line per method or per second value")
+          .Field("trial", &P::trial, AtLeast(0), "trajectory: the trial drawn")
+          .Check("file", [](const P& p) {
+            return p.file.size() < 5 || p.file.substr(p.file.size() - 4) != ".png" || p.file.find('/') != std::string::npos
+                       ? "expected a file name ending in .png (no directory)"
+                       : "";
+          });
+  return schema;
+}
+
 PlotSpec ReadPlot(const nlohmann::json& j, const std::string& where, const std::string& key) {
   JsonReader reader(j, where, key);
   PlotSpec plot;
-  reader.Get("kind", &plot.kind).Get("file", &plot.file).Get("title", &plot.title).Get("yscale", &plot.yscale);
-  reader.Get("band", &plot.band).Get("lines", &plot.lines).Get("trial", &plot.trial);
+  PlotSchema().Read(reader, &plot);
   reader.RejectUnknownKeys();
-  if (!kPlotKinds.count(plot.kind)) reader.Fail("kind", "must be \"sweep\", \"grid\", \"curves\" or \"trajectory\"");
-  if (plot.file.size() < 5 || plot.file.substr(plot.file.size() - 4) != ".png" ||
-      plot.file.find('/') != std::string::npos) {
-    reader.Fail("file", "expected a file name ending in .png (no directory)");
-  }
-  if (plot.yscale != "linear" && plot.yscale != "log") reader.Fail("yscale", "must be \"linear\" or \"log\"");
-  if (plot.lines != "methods" && plot.lines != "sweep") reader.Fail("lines", "must be \"methods\" or \"sweep\"");
-  if (plot.trial < 0) reader.Fail("trial", "must be >= 0");
   return plot;
 }
 
@@ -163,13 +178,7 @@ SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& w
     config.Check(where);
     return config;
   } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    const std::string prefix = where + ": key '";
-    const std::string suffix = at.empty() ? "" : " (at sweep point " + at + ")";
-    if (message.compare(0, prefix.size(), prefix) == 0) {
-      throw ConfigError(prefix + "simulation." + message.substr(prefix.size()) + suffix);
-    }
-    throw ConfigError(where + ": key 'simulation': " + message + suffix);
+    RethrowUnder(e, where, "simulation", at.empty() ? "" : " (at sweep point " + at + ")");
   }
 }
 
@@ -207,10 +216,7 @@ nlohmann::json ToJson(const SweepAxis& a) {
 
 nlohmann::json ToJson(const OrderingCheck& o) { return {{"better", o.better}, {"worse", o.worse}, {"at", o.at}}; }
 
-nlohmann::json ToJson(const PlotSpec& p) {
-  return {{"kind", p.kind}, {"file", p.file},   {"title", p.title}, {"yscale", p.yscale},
-          {"band", p.band}, {"lines", p.lines}, {"trial", p.trial}};
-}
+nlohmann::json ToJson(const PlotSpec& p) { return PlotSchema().ToJson(p); }
 
 }  // namespace
 
