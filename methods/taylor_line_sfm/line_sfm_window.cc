@@ -1,5 +1,7 @@
 #include "methods/taylor_line_sfm/line_sfm_window.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -30,6 +32,18 @@ double DepthOnLine(const PinholeCamera& camera, const Eigen::Vector2d& x, const 
   return r_cross_d.dot(line.moment) / r_cross_d.squaredNorm();
 }
 
+// Ceres reports a linear solve that failed (a step it then retries with more damping) as a glog
+// WARNING on stderr. With outliers, the robust loss can leave a line or a pose with nearly no
+// weight and the reduced system not numerically positive definite, often enough to flood the
+// experiments' output: only errors are shown. Set once, before any of this tracker's solves.
+void ShowOnlyCeresErrors() {
+  static const bool once = [] {
+    if (FLAGS_minloglevel < google::GLOG_ERROR) FLAGS_minloglevel = google::GLOG_ERROR;
+    return true;
+  }();
+  (void)once;
+}
+
 }  // namespace
 
 void CollectWindowObservations(const std::vector<LineObservation>& image, std::vector<LineObservation>* scratch,
@@ -42,6 +56,7 @@ void CollectWindowObservations(const std::vector<LineObservation>& image, std::v
 
 LineSfmWindow::LineSfmWindow(const TaylorLineSfmOptions& options) : options_(options) {
   options_.Check();
+  ShowOnlyCeresErrors();
   min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
   if (options_.loss == SegmentLoss::kHuber) {
     robust_loss_ = std::make_unique<ceres::HuberLoss>(options_.loss_scale);

@@ -27,7 +27,7 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
     const TriangulationReport t = window_.TriangulateNewLines();
     counters_.lines_triangulated += t.triangulated;
     counters_.degenerate_triangulations += t.degenerate;
-    out.status = TrackingStatus::kReinitialized;
+    out.status = TrackingStatus::kNewReference;
     out.features_available = t.triangulated;
     return out;
   }

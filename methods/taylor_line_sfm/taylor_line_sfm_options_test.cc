@@ -7,25 +7,21 @@
 namespace slt {
 namespace {
 
-TEST(TaylorLineSfmOptions, JsonRoundTripKeepsEveryField) {
-  // Every field changed from its default to another valid value: a field that the schema reads
-  // or writes wrongly comes back at its default and breaks the equality.
-  const OptionSchema<TaylorLineSfmOptions>& schema = TaylorLineSfmOptionsSchema();
-  const nlohmann::json defaults = schema.ToJson(TaylorLineSfmOptions());
-  nlohmann::json changed = defaults;
-  for (auto& [key, value] : changed.items()) {
-    if (!value.is_string()) value = ChangedJsonValues(value).front();
+TEST(TaylorLineSfmOptions, EnumsAreReadByName) {
+  // Numbers and flags are round-tripped for every registered tracker by the shared suite
+  // (tests/tracker_suite_test.cc); the enum names are this schema's own.
+  const nlohmann::json defaults = TaylorLineSfmOptionsSchema().ToJson(TaylorLineSfmOptions());
+  EXPECT_EQ(defaults["loss"], "cauchy");
+  EXPECT_EQ(defaults["linear_solver"], "dense_schur");
+  for (const auto& [loss, expected] : std::vector<std::pair<std::string, SegmentLoss>>{
+           {"none", SegmentLoss::kNone}, {"huber", SegmentLoss::kHuber}, {"cauchy", SegmentLoss::kCauchy}}) {
+    TaylorLineSfmOptions o;
+    JsonReader reader({{"loss", loss}, {"linear_solver", "sparse_schur"}}, "test");
+    TaylorLineSfmOptionsSchema().Read(reader, &o);
+    EXPECT_EQ(o.loss, expected) << loss;
+    EXPECT_EQ(o.linear_solver, WindowLinearSolver::kSparseSchur);
+    EXPECT_EQ(TaylorLineSfmOptionsSchema().ToJson(o)["loss"], loss);
   }
-  changed["loss"] = "huber";
-  changed["linear_solver"] = "sparse_schur";
-  ASSERT_EQ(changed.size(), 15u) << "a field was added: extend this test if it needs a special value";
-  for (const auto& [key, value] : changed.items()) EXPECT_NE(value, defaults[key]) << key;
-
-  TaylorLineSfmOptions read;
-  JsonReader reader(changed, "test");
-  schema.Read(reader, &read);
-  reader.RejectUnknownKeys();
-  EXPECT_EQ(schema.ToJson(read), changed);
 }
 
 TEST(TaylorLineSfmOptions, ErrorsNameTheFileAndTheKey) {
