@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "simulator/paper_cuboids.h"
 #include "simulator/random_draws.h"
 
 namespace slt {
@@ -66,8 +67,9 @@ class SceneBuilder {
 
 void MakePaperScene(const PaperSceneConfig& c, RandomStream& rng, std::vector<Line3d>* lines) {
   // Always six draws per line: line i uses draws 6i .. 6i+5, so the first N lines of a scene
-  // are the N-line scene of the same seed.
-  for (int i = 0; i < c.lines; ++i) {
+  // are the N-line scene of the same seed. Cuboid edges (paper_cuboids.h) take the place of the
+  // last random lines.
+  for (int i = 0; i < c.lines - PaperCuboidLineCount(c); ++i) {
     Eigen::Vector3d mid;
     for (int k = 0; k < 3; ++k) mid[k] = c.box_center_m[k] + c.box_size_m[k] * Uniform(rng, -0.5, 0.5);
     const Eigen::Vector3d direction = UniformUnitVector(rng);
@@ -223,6 +225,7 @@ std::vector<Line3d> MakeScene(const SceneConfig& config, std::uint64_t seed) {
   std::vector<Line3d> lines;
   switch (config.type) {
     case SceneType::kPaper:
+      AddPaperCuboids(config.paper, seed, &lines);  // ids 0 .. cuboid lines - 1, none by default
       MakePaperScene(config.paper, rng, &lines);
       return lines;
     case SceneType::kRoom: MakeRoomScene(config.room, rng, &lines); break;

@@ -137,6 +137,9 @@ void SimulationConfig::Check(const std::string& where) const {
   if (!paper.box_size_m.allFinite() || (paper.box_size_m.array() < 0.0).any()) {
     fail("scene.paper.box_size_m", "must be finite and >= 0");
   }
+  if (!(paper.cuboid_fraction >= 0.0 && paper.cuboid_fraction <= 1.0)) {
+    fail("scene.paper.cuboid_fraction", "must be in [0, 1]");
+  }
   // The furniture has fixed sizes (a 2 m bookshelf, 2.05 m doors): smaller rooms cannot hold it.
   const RoomSceneConfig& room = scene.room;
   at_least(room.width_m, 4.6, "scene.room.width_m");
@@ -218,6 +221,7 @@ SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::st
     paper.Get("min_length_m", &c.scene.paper.min_length_m).Get("max_length_m", &c.scene.paper.max_length_m);
     GetVector3(paper, "box_center_m", &c.scene.paper.box_center_m);
     GetVector3(paper, "box_size_m", &c.scene.paper.box_size_m);
+    paper.Get("cuboid_fraction", &c.scene.paper.cuboid_fraction);
     paper.RejectUnknownKeys();
     JsonReader room = s.Child("room");
     room.Get("width_m", &c.scene.room.width_m)
@@ -311,7 +315,8 @@ nlohmann::json SimulationConfigToJson(const SimulationConfig& c) {
           {"min_length_m", paper.min_length_m},
           {"max_length_m", paper.max_length_m},
           {"box_center_m", Vector3ToJson(paper.box_center_m)},
-          {"box_size_m", Vector3ToJson(paper.box_size_m)}}},
+          {"box_size_m", Vector3ToJson(paper.box_size_m)},
+          {"cuboid_fraction", paper.cuboid_fraction}}},
         {"room",
          {{"width_m", room.width_m},
           {"depth_m", room.depth_m},
