@@ -84,8 +84,9 @@ struct StereoLineConstraint {
 };
 
 // Least-squares t of b_from_a = [R | t] from `count` lines (two rows each). Returns false, t
-// unchanged, when the rows do not fix t: the smallest eigenvalue of A^T A below
-// min_eigenvalue_ratio times the largest (e.g. all lines parallel).
+// unchanged, when the rows do not fix t (e.g. all lines parallel): det(A^T A) below
+// min_eigenvalue_ratio * trace(A^T A)^3 / 4, a test that accepts only when the smallest
+// eigenvalue of A^T A is at least min_eigenvalue_ratio times the largest.
 bool TranslationFromStereoLines(const Eigen::Matrix3d& b_from_a_rotation, const Rigid3d& right_from_left,
                                 const StereoLineConstraint* lines, int count, double min_eigenvalue_ratio,
                                 Eigen::Vector3d* b_from_a_translation);
