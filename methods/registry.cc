@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "methods/constant_pose/constant_pose_tracker.h"
+#include "methods/elqursh_three_line/elqursh_three_line.h"
 #include "methods/pose_tracker.h"
 #include "methods/trifocal_line_ekf/trifocal_line_ekf.h"
 #include "methods/yu_point_ekf/yu_point_ekf.h"
@@ -13,6 +14,7 @@ const std::vector<TrackerInfo>& RegisteredTrackers() {
   static const std::vector<TrackerInfo> trackers = {
       TrifocalLineEkfInfo(),
       YuPointEkfInfo(),
+      ElqurshThreeLineInfo(),
       ConstantPoseTrackerInfo(),
   };
   return trackers;
