@@ -9,7 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "simulator/scene.h"
+#include "simulator/simulation_config.h"
+#include "simulator/surface.h"
 
 namespace slt {
 
