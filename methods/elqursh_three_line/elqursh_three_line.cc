@@ -29,7 +29,7 @@ struct MatchedLine {
 
 // The RANSAC estimator (optim/ransac.h): data are the matched lines, samples are candidate
 // triplets, models are cam_from_ref.
-class ThreeLineEstimator {
+class ThreeLineEstimator : public FixedSampleSize<3> {
  public:
   using Model = Rigid3d;
 
@@ -51,9 +51,6 @@ class ThreeLineEstimator {
         refine_indices_(refine_indices) {}
 
   int NumData() const { return static_cast<int>(lines_.size()); }
-  int MinSampleSize() const { return 3; }
-  int MaxSampleSize() const { return 3; }
-  bool SampleComplete(const int*, int) const { return true; }
   // The next candidate triplet (candidate_triplets.h), or none: every one of a short list was
   // drawn.
   int DrawSample(std::mt19937_64& rng, int* sample) const {
@@ -233,7 +230,6 @@ void ElqurshThreeLineTracker::CollectMatchedLines() {
     WeightedFeature& f = refine_features_[i];
     f.block.measured_rows = FeatureBlock::kAllRows;
     f.sqrt_covariance.setIdentity();
-    f.valid = true;
   }
 }
 
@@ -243,7 +239,7 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
     started_ = true;
     cam_from_world_ = Rigid3d();
     SetReference(frame, cam_from_world_);
-    out.status = TrackingStatus::kReinitialized;
+    out.status = TrackingStatus::kNewReference;
     return out;
   }
   model_.SetCurrent(frame);
