@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/json_reader.h"
+#include "geometry/se3.h"
 #include "tests/test_support.h"
 
 namespace slt {
