@@ -1,13 +1,11 @@
 #include "experiments/experiment_driver.h"
 
-#include <sys/wait.h>
-
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
 #include "common/json_reader.h"
+#include "common/script_runner.h"
 #include "experiments/machine_info.h"
 
 namespace slt {
@@ -98,21 +96,13 @@ std::string FindConfigFile(const std::string& name) {
 }
 
 void RunPlotScript(const std::string& dir, bool quiet) {
-  std::string script = Join(SourceDir(), "scripts/plot_experiment.py");
-  std::error_code error;
-  if (!fs::is_regular_file(script, error)) script = "scripts/plot_experiment.py";
-  if (!fs::is_regular_file(script, error)) {
-    throw std::runtime_error("plotting: scripts/plot_experiment.py not found (results are written; use --no-plots)");
-  }
-  const char* env = std::getenv("SLT_PYTHON");
-  const std::string python = env != nullptr && *env != '\0' ? env : "/usr/bin/python3";
-  const std::string command = ShellQuote(python) + " " + ShellQuote(script) + " " + ShellQuote(dir) +
-                              (quiet ? " --quiet" : "");
-  const int status = std::system(command.c_str());
-  if (status != 0) {
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : status;
-    throw std::runtime_error("plotting failed (" + command + " exited with " + std::to_string(code) +
-                             "); the results are written, only the plots are missing");
+  std::vector<std::string> args = {dir};
+  if (quiet) args.push_back("--quiet");
+  try {
+    RunPythonScript("scripts/plot_experiment.py", args);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("plotting failed (") + e.what() +
+                             "); the results are written, only the plots are missing (use --no-plots to skip them)");
   }
 }
 

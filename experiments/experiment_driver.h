@@ -35,8 +35,8 @@ std::string DefaultOutputDir(const std::string& name);
 // Throws std::runtime_error listing where it looked.
 std::string FindConfigFile(const std::string& name);
 
-// Runs `<python> scripts/plot_experiment.py DIR` (python: $SLT_PYTHON, else /usr/bin/python3,
-// which has Debian's matplotlib). Throws std::runtime_error when the script fails.
+// Runs scripts/plot_experiment.py DIR with RunPythonScript (common/script_runner.h). Throws
+// std::runtime_error when the script fails.
 void RunPlotScript(const std::string& dir, bool quiet = false);
 
 }  // namespace slt
