@@ -1,5 +1,6 @@
 #include "experiments/experiment_driver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <stdexcept>
@@ -90,9 +91,24 @@ std::string FindConfigFile(const std::string& name) {
   for (const std::string& c : candidates) {
     if (fs::is_regular_file(c, error)) return c;
   }
-  std::string looked;
+  std::string looked, available;
   for (const std::string& c : candidates) looked += (looked.empty() ? "" : ", ") + c;
-  throw std::runtime_error("config '" + name + "' not found (looked for " + looked + ")");
+  for (const std::string& c : AvailableConfigs()) available += (available.empty() ? "" : ", ") + c;
+  throw std::runtime_error("config '" + name + "' not found (looked for " + looked + "); available: " +
+                           (available.empty() ? "none found" : available));
+}
+
+std::vector<std::string> AvailableConfigs() {
+  const fs::path root = fs::path(SourceDir()) / "experiments/configs";
+  std::vector<std::string> names;
+  std::error_code error;
+  for (fs::recursive_directory_iterator it(root, error), end; !error && it != end; it.increment(error)) {
+    if (it->is_regular_file(error) && it->path().extension() == ".json") {
+      names.push_back(it->path().lexically_relative(root).replace_extension().generic_string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 void RunPlotScript(const std::string& dir, bool quiet) {

@@ -32,8 +32,12 @@ std::string DefaultOutputDir(const std::string& name);
 
 // Finds a config: `name` as given (relative to the current directory), then in
 // ./experiments/configs/ and <source tree>/experiments/configs/, each with and without ".json".
-// Throws std::runtime_error listing where it looked.
+// Throws std::runtime_error listing where it looked and the available configs.
 std::string FindConfigFile(const std::string& name);
+
+// The configs of <source tree>/experiments/configs/ by the names FindConfigFile takes, sorted:
+// "ablation", ..., "ci/noise_sweep_ci" (empty when the source tree is gone).
+std::vector<std::string> AvailableConfigs();
 
 // Runs scripts/plot_experiment.py DIR with RunPythonScript (common/script_runner.h). Throws
 // std::runtime_error when the script fails.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "common/json_reader.h"
@@ -195,7 +196,18 @@ TEST(Runner, FindsConfigsByName) {
   const std::string path = FindConfigFile("noise_sweep");
   EXPECT_NE(path.find("experiments/configs/noise_sweep.json"), std::string::npos);
   EXPECT_EQ(FindConfigFile("noise_sweep.json"), path);
-  EXPECT_THROW(FindConfigFile("no_such_experiment"), std::runtime_error);
+  try {
+    FindConfigFile("no_such_experiment");
+    FAIL() << "found a config that does not exist";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("; available: ablation, ablation_robust, ci/error_vs_frame_ci, "),
+              std::string::npos) << e.what();
+  }
+  const std::vector<std::string> configs = AvailableConfigs();
+  EXPECT_TRUE(std::is_sorted(configs.begin(), configs.end()));
+  for (const char* name : {"noise_sweep", "loop", "ci/loop_ci"}) {
+    EXPECT_NE(std::find(configs.begin(), configs.end(), name), configs.end()) << name;
+  }
 }
 
 }  // namespace

@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
   app.add_option("--merge", merge_dirs, "Combine these shard output directories into one result");
   app.add_flag("--no-plots", no_plots, "Do not draw the PNG plots");
   app.add_flag("--quiet,-q", quiet, "No progress bar, no final message");
+  std::string configs;
+  for (const std::string& name : AvailableConfigs()) configs += "\n  " + name;
+  app.footer("CONFIG names in experiments/configs/ (docs/experiments.md):" + (configs.empty() ? std::string(" none found") : configs));
   Shard shard;
   try {
     app.parse(argc, argv);
