@@ -11,7 +11,7 @@
 namespace slt {
 namespace {
 
-const std::set<std::string> kPlotKinds = {"sweep", "grid", "curves", "trajectory"};
+const std::set<std::string> kPlotKinds = {"sweep", "grid", "curves", "trajectory", "methods"};
 
 std::string Indexed(const std::string& key, size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
@@ -98,13 +98,38 @@ SweepAxis ReadAxis(const nlohmann::json& j, const std::string& where, const std:
   return axis;
 }
 
+ReportedValue ReadReportedValue(const nlohmann::json& j, const std::string& where, const std::string& key) {
+  JsonReader reader(j, where, key);
+  ReportedValue value;
+  reader.Get("x", &value.x).Get("rot_err_deg", &value.rot_err_deg).Get("trans_err_m", &value.trans_err_m);
+  reader.Get("upper_bound", &value.upper_bound).Get("label", &value.label);
+  reader.RejectUnknownKeys();
+  if (!reader.Find("x")) reader.Fail("x", "required: the value of the swept parameter (any number on a \"methods\" plot)");
+  if (value.rot_err_deg < 0.0 && value.trans_err_m < 0.0) {
+    reader.Fail("rot_err_deg", "give rot_err_deg, trans_err_m or both (>= 0)");
+  }
+  return value;
+}
+
 PlotSpec ReadPlot(const nlohmann::json& j, const std::string& where, const std::string& key) {
   JsonReader reader(j, where, key);
   PlotSpec plot;
   reader.Get("kind", &plot.kind).Get("file", &plot.file).Get("title", &plot.title).Get("yscale", &plot.yscale);
+  reader.Get("caption", &plot.caption).Get("statistic", &plot.statistic);
   reader.Get("band", &plot.band).Get("lines", &plot.lines).Get("trial", &plot.trial);
+  if (const nlohmann::json* paper = reader.Find("paper")) {
+    if (!paper->is_array()) reader.Fail("paper", "expected an array of {\"x\", \"rot_err_deg\", \"trans_err_m\"} objects");
+    for (size_t i = 0; i < paper->size(); ++i) {
+      plot.paper.push_back(ReadReportedValue((*paper)[i], where, Indexed(reader.KeyPath("paper"), i)));
+    }
+  }
   reader.RejectUnknownKeys();
-  if (!kPlotKinds.count(plot.kind)) reader.Fail("kind", "must be \"sweep\", \"grid\", \"curves\" or \"trajectory\"");
+  if (!kPlotKinds.count(plot.kind)) {
+    reader.Fail("kind", "must be \"sweep\", \"grid\", \"curves\", \"trajectory\" or \"methods\"");
+  }
+  if (plot.statistic != "mean" && plot.statistic != "median" && plot.statistic != "both") {
+    reader.Fail("statistic", "must be \"mean\", \"median\" or \"both\"");
+  }
   if (plot.file.size() < 5 || plot.file.substr(plot.file.size() - 4) != ".png" ||
       plot.file.find('/') != std::string::npos) {
     reader.Fail("file", "expected a file name ending in .png (no directory)");
@@ -147,6 +172,9 @@ void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::strin
   if (plot.kind == "sweep" && c.sweep.size() != 1) fail("\"sweep\" plots need exactly one swept parameter");
   if (plot.kind == "grid" && c.sweep.size() != 2) fail("\"grid\" plots need two swept parameters");
   if (plot.kind == "curves" && !c.per_frame_curves) fail("\"curves\" plots need \"per_frame_curves\": true");
+  if (!plot.paper.empty() && plot.kind != "sweep" && plot.kind != "methods") {
+    ThrowOptionError(where, key, "paper", "the paper's values are drawn on \"sweep\" and \"methods\" plots only");
+  }
   if (plot.kind == "trajectory" && plot.trial >= c.save_trajectories) {
     ThrowOptionError(where, key, "trial", "trial " + std::to_string(plot.trial) +
                                               " is not saved (\"save_trajectories\" is " +
@@ -180,9 +208,17 @@ nlohmann::json ToJson(const SweepAxis& a) {
   return {{"parameter", a.parameter}, {"values", a.values}, {"label", a.label}};
 }
 
+nlohmann::json ToJson(const ReportedValue& v) {
+  return {{"x", v.x}, {"rot_err_deg", v.rot_err_deg}, {"trans_err_m", v.trans_err_m},
+          {"upper_bound", v.upper_bound}, {"label", v.label}};
+}
+
 nlohmann::json ToJson(const PlotSpec& p) {
-  return {{"kind", p.kind}, {"file", p.file},   {"title", p.title}, {"yscale", p.yscale},
-          {"band", p.band}, {"lines", p.lines}, {"trial", p.trial}};
+  nlohmann::json paper = nlohmann::json::array();
+  for (const ReportedValue& v : p.paper) paper.push_back(ToJson(v));
+  return {{"kind", p.kind},   {"file", p.file},           {"title", p.title}, {"caption", p.caption},
+          {"yscale", p.yscale}, {"band", p.band},         {"statistic", p.statistic},
+          {"lines", p.lines}, {"trial", p.trial},         {"paper", paper}};
 }
 
 }  // namespace

@@ -28,6 +28,8 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"final_trans_err_m", "Final translation error (m)"},
     {"ate_trans_m", "ATE translation RMSE (m)"},
     {"ate_rot_deg", "ATE rotation RMSE (deg)"},
+    {"max_trans_err_m", "Largest translation error (m)"},
+    {"max_rot_err_deg", "Largest rotation error (deg)"},
     {"rpe_trans_m", "RPE translation RMSE (m)"},
     {"rpe_rot_deg", "RPE rotation RMSE (deg)"},
     {"path_length_m", "Path length (m)"},

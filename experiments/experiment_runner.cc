@@ -141,6 +141,8 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
     m[kFinalTransErrM] = errors.Final().trans_err_m;
     m[kAteTransM] = errors.ate_trans_m.rmse;
     m[kAteRotDeg] = errors.ate_rot_deg.rmse;
+    m[kMaxTransErrM] = errors.ate_trans_m.max;
+    m[kMaxRotErrDeg] = errors.ate_rot_deg.max;
     if (errors.rpe_trans_m.count > 0) {
       m[kRpeTransM] = errors.rpe_trans_m.rmse;
       m[kRpeRotDeg] = errors.rpe_rot_deg.rmse;

@@ -20,6 +20,8 @@ enum TrialMetric {
   kFinalTransErrM,
   kAteTransM,          // ATE RMSE over all frames
   kAteRotDeg,
+  kMaxTransErrM,       // largest translation error over all frames (the ATE's max)
+  kMaxRotErrDeg,       // largest rotation error over all frames
   kRpeTransM,          // RPE RMSE, delta = 1 frame
   kRpeRotDeg,
   kPathLengthM,        // length of the ground-truth path

@@ -103,6 +103,11 @@ def path_length(xyz):
     return sum(math.dist(xyz[k], xyz[k - 1]) for k in range(1, len(xyz)))
 
 
+def distance_text(metres):
+    """An error or a gap: mm below a metre, m above (a diverged run)."""
+    return "%.3g mm" % (1000.0 * metres) if abs(metres) < 1.0 else "%.3g m" % metres
+
+
 def length_text(metres):
     """A length with a precision that suits it: 0.698 m, 12.35 m, 1234 m."""
     return "%.3f m" % metres if metres < 10 else "%.2f m" % metres if metres < 100 else "%.0f m" % metres
