@@ -1,13 +1,28 @@
-// For tests that check an options reader reads every key: other values for a JSON leaf,
-// different from it, the plausible ones first (fractions stay in (0, 1), counts and scales
-// grow), so that a key read but ignored comes back at its old value and shows.
+// For the tests of config readers. ConfigErrorOf: the message of the ConfigError a call
+// throws. ChangedJsonValues: other values for a JSON leaf, different from it, the plausible ones
+// first (fractions stay in (0, 1), counts and scales grow), so that a key read but ignored comes
+// back at its old value and shows.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "common/json_reader.h"
+
 namespace slt {
+
+// The message of the ConfigError that f throws, or "" when it throws none.
+inline std::string ConfigErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 // Empty for null, objects and arrays; strings get one value no enum accepts.
 inline std::vector<nlohmann::json> ChangedJsonValues(const nlohmann::json& value) {

@@ -8,49 +8,40 @@
 #include <utility>
 
 #include "common/json_reader.h"
+#include "common/options.h"
 #include "dataset/stereo_lines_io.h"
 
 namespace slt {
 namespace {
 
-constexpr std::array<std::pair<SceneType, const char*>, 3> kSceneTypes{{
-    {SceneType::kPaper, "paper"}, {SceneType::kRoom, "room"}, {SceneType::kCorridor, "corridor"}}};
-constexpr std::array<std::pair<MotionType, const char*>, 5> kMotionTypes{{{MotionType::kPaper, "paper"},
-                                                                          {MotionType::kLoop, "loop"},
-                                                                          {MotionType::kForward, "forward"},
-                                                                          {MotionType::kStatic, "static"},
-                                                                          {MotionType::kPureRotation, "pure_rotation"}}};
-constexpr std::array<std::pair<NoiseModel, const char*>, 2> kNoiseModels{{
-    {NoiseModel::kUniform, "uniform"}, {NoiseModel::kGaussian, "gaussian"}}};
-constexpr std::array<std::pair<EndpointModel, const char*>, 2> kEndpointModels{{
-    {EndpointModel::kFixed, "fixed"}, {EndpointModel::kSliding, "sliding"}}};
-
-template <typename Enum, std::size_t N>
-const char* NameOf(const std::array<std::pair<Enum, const char*>, N>& table, Enum value) {
-  for (const auto& [e, name] : table) {
-    if (e == value) return name;
-  }
-  return "unknown";
+const EnumNames<SceneType>& SceneTypes() {
+  static const EnumNames<SceneType> names = {
+      {SceneType::kPaper, "paper"}, {SceneType::kRoom, "room"}, {SceneType::kCorridor, "corridor"}};
+  return names;
+}
+const EnumNames<MotionType>& MotionTypes() {
+  static const EnumNames<MotionType> names = {{MotionType::kPaper, "paper"},
+                                              {MotionType::kLoop, "loop"},
+                                              {MotionType::kForward, "forward"},
+                                              {MotionType::kStatic, "static"},
+                                              {MotionType::kPureRotation, "pure_rotation"}};
+  return names;
+}
+const EnumNames<NoiseModel>& NoiseModels() {
+  static const EnumNames<NoiseModel> names = {{NoiseModel::kUniform, "uniform"}, {NoiseModel::kGaussian, "gaussian"}};
+  return names;
+}
+const EnumNames<EndpointModel>& EndpointModels() {
+  static const EnumNames<EndpointModel> names = {{EndpointModel::kFixed, "fixed"}, {EndpointModel::kSliding, "sliding"}};
+  return names;
 }
 
-template <typename Enum, std::size_t N>
-void GetEnum(JsonReader& r, const std::string& key, const std::array<std::pair<Enum, const char*>, N>& table,
-             Enum* value) {
-  std::string name = NameOf(table, *value);
-  r.Get(key, &name);
-  std::string known;
-  for (const auto& [e, n] : table) {
-    if (name == n) {
-      *value = e;
-      return;
-    }
-    known += std::string(known.empty() ? "" : ", ") + "\"" + n + "\"";
-  }
-  r.Fail(key, "unknown value \"" + name + "\" (expected one of " + known + ")");
-}
+// Lengths, angles and rates: finite and at least `lo`.
+NumberRange FiniteAtLeast(double lo) { return AtLeast(lo).Finite(); }
+NumberRange FinitePositive() { return Positive().Finite(); }
 
 // null or absent: no override.
-void GetSeedOverride(JsonReader& r, const std::string& key, std::optional<std::uint64_t>* value) {
+void ReadSeedOverride(JsonReader& r, const std::string& key, std::optional<std::uint64_t>* value) {
   const nlohmann::json* v = r.Find(key);
   if (v == nullptr || v->is_null()) return;
   std::uint64_t seed = 0;
@@ -58,28 +49,254 @@ void GetSeedOverride(JsonReader& r, const std::string& key, std::optional<std::u
   *value = seed;
 }
 
-void GetVector3(JsonReader& r, const std::string& key, Eigen::Vector3d* value) {
-  const nlohmann::json* v = r.Find(key);
-  if (v == nullptr) return;
-  if (!v->is_array() || v->size() != 3 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
-      !(*v)[2].is_number()) {
-    r.Fail(key, "expected an array of 3 numbers");
-  }
-  *value = {(*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>()};
-}
-
-nlohmann::json Vector3ToJson(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
-
 nlohmann::json SeedToJson(const std::optional<std::uint64_t>& seed) {
   return seed ? nlohmann::json(*seed) : nlohmann::json(nullptr);
 }
 
+// A 3-vector field of S.
+template <typename S>
+OptionSchema<S>&& Vector3Field(OptionSchema<S>&& schema, const std::string& key, Eigen::Vector3d S::*member,
+                               const std::string& doc) {
+  return std::move(schema).Custom(
+      key,
+      [key, member](JsonReader& r, S* s) {
+        const nlohmann::json* v = r.Find(key);
+        if (v == nullptr) return;
+        if (!v->is_array() || v->size() != 3 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+            !(*v)[2].is_number()) {
+          r.Fail(key, "expected an array of 3 numbers");
+        }
+        s->*member = {(*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>()};
+      },
+      [member](const S& s) {
+        const Eigen::Vector3d& v = s.*member;
+        return nlohmann::json::array({v.x(), v.y(), v.z()});
+      },
+      "[x, y, z]", doc);
+}
+
+std::string FloorToCeiling(double camera_height_m, double height_m) {
+  return camera_height_m > 0.0 && camera_height_m < height_m ? "" : "must be between the floor and the ceiling";
+}
+
+const OptionSchema<PaperSceneConfig>& PaperSceneSchema() {
+  using C = PaperSceneConfig;
+  static const OptionSchema<C> schema =
+      Vector3Field(Vector3Field(OptionSchema<C>()
+                                    .Field("lines", &C::lines, AtLeast(1), "random segments")
+                                    .Field("min_length_m", &C::min_length_m, FinitePositive(), "shortest segment (m)")
+                                    .Field("max_length_m", &C::max_length_m, AnyNumber(), "longest segment (m)"),
+                                "box_center_m", &C::box_center_m, "centre of the box of midpoints (world, m)"),
+                   "box_size_m", &C::box_size_m, "size of that box (m)")
+          .Check("max_length_m",
+                 [](const C& c) {
+                   return c.max_length_m >= c.min_length_m && std::isfinite(c.max_length_m)
+                              ? ""
+                              : "must be finite and >= scene.paper.min_length_m";
+                 })
+          .Check("box_center_m", [](const C& c) { return c.box_center_m.allFinite() ? "" : "must be finite"; })
+          .Check("box_size_m", [](const C& c) {
+            return c.box_size_m.allFinite() && !(c.box_size_m.array() < 0.0).any() ? "" : "must be finite and >= 0";
+          });
+  return schema;
+}
+
+// The furniture has fixed sizes (a 2 m bookshelf, 2.05 m doors): smaller rooms cannot hold it.
+const OptionSchema<RoomSceneConfig>& RoomSceneSchema() {
+  using C = RoomSceneConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("width_m", &C::width_m, FiniteAtLeast(4.6), "along x (m)")
+          .Field("depth_m", &C::depth_m, FiniteAtLeast(4.0), "along z (m)")
+          .Field("height_m", &C::height_m, FiniteAtLeast(2.3), "floor to ceiling (m)")
+          .Field("camera_height_m", &C::camera_height_m, AnyNumber(), "camera above the floor (m)")
+          .Check("camera_height_m", [](const C& c) { return FloorToCeiling(c.camera_height_m, c.height_m); });
+  return schema;
+}
+
+const OptionSchema<CorridorSceneConfig>& CorridorSceneSchema() {
+  using C = CorridorSceneConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("width_m", &C::width_m, FiniteAtLeast(1.2), "(m)")
+          .Field("height_m", &C::height_m, FiniteAtLeast(2.3), "(m)")
+          .Field("length_m", &C::length_m, FiniteAtLeast(6.0), "(m)")
+          .Field("camera_height_m", &C::camera_height_m, AnyNumber(), "camera above the floor (m)")
+          .Check("camera_height_m", [](const C& c) { return FloorToCeiling(c.camera_height_m, c.height_m); });
+  return schema;
+}
+
+const OptionSchema<SceneConfig>& SceneSchema() {
+  using C = SceneConfig;
+  static const OptionSchema<C> schema = OptionSchema<C>()
+                                            .Field("type", &C::type, SceneTypes(), "which scene")
+                                            .Child("paper", &C::paper, PaperSceneSchema(), "the paper's random segments")
+                                            .Child("room", &C::room, RoomSceneSchema(), "a furnished room")
+                                            .Child("corridor", &C::corridor, CorridorSceneSchema(), "a long corridor");
+  return schema;
+}
+
+const OptionSchema<SinusoidMotionConfig>& SinusoidMotionSchema() {
+  using C = SinusoidMotionConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("max_rotation_deg", &C::max_rotation_deg, InRange(0.0, 180.0, "[)").Finite(),
+                 "bound of the per-frame rotation (deg)")
+          .Field("max_translation_m", &C::max_translation_m, FiniteAtLeast(0.0), "bound of the per-frame translation (m)")
+          // Below 2 frames a sampled sinusoid aliases into a slower one.
+          .Field("period_min_frames", &C::period_min_frames, FiniteAtLeast(2.0), "shortest period (frames)")
+          .Field("period_max_frames", &C::period_max_frames, AnyNumber(), "longest period (frames)")
+          .Check("period_max_frames", [](const C& c) {
+            return c.period_max_frames >= c.period_min_frames && std::isfinite(c.period_max_frames)
+                       ? ""
+                       : "must be finite and >= motion.sinusoid.period_min_frames";
+          });
+  return schema;
+}
+
+const OptionSchema<LoopMotionConfig>& LoopMotionSchema() {
+  using C = LoopMotionConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("radius_x_m", &C::radius_x_m, FiniteAtLeast(0.0), "ellipse semi-axis along x (m)")
+          .Field("radius_z_m", &C::radius_z_m, FiniteAtLeast(0.0), "ellipse semi-axis along z (m)")
+          .Field("yaw_amplitude_deg", &C::yaw_amplitude_deg, InRange(0.0, 90.0, "[)").Finite(), "yaw swing (deg)")
+          .Field("wobble_height_m", &C::wobble_height_m, FiniteAtLeast(0.0), "up/down wobble (m)")
+          .Field("wobble_deg", &C::wobble_deg, InRange(0.0, 45.0, "[)").Finite(), "pitch/roll wobble (deg)");
+  return schema;
+}
+
+const OptionSchema<ForwardMotionConfig>& ForwardMotionSchema() {
+  using C = ForwardMotionConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("step_m", &C::step_m, FiniteAtLeast(0.0), "forward step per frame (m)")
+          .Field("wobble_m", &C::wobble_m, FiniteAtLeast(0.0), "sideways wobble (m)")
+          .Field("wobble_deg", &C::wobble_deg, InRange(0.0, 45.0, "[)").Finite(), "rotation wobble (deg)")
+          // The shortest drawn period is half of this: keep it >= 2 frames (no aliasing).
+          .Field("wobble_period_frames", &C::wobble_period_frames, FiniteAtLeast(4.0), "wobble period (frames)");
+  return schema;
+}
+
+const OptionSchema<MotionConfig>& MotionSchema() {
+  using C = MotionConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("type", &C::type, MotionTypes(), "which motion (default: the scene's)")
+          .Child("sinusoid", &C::sinusoid, SinusoidMotionSchema(), "paper and pure_rotation")
+          .Child("loop", &C::loop, LoopMotionSchema(), "a closed loop")
+          .Child("forward", &C::forward, ForwardMotionSchema(), "forward with wobble");
+  return schema;
+}
+
+const OptionSchema<ObservationConfig>& ObservationSchema() {
+  using C = ObservationConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("clip_to_image", &C::clip_to_image, "clip segments to the image (default: not for the paper scene)")
+          // The outlier sampler draws segments of at least min_length_px inside the image.
+          .Field("min_length_px", &C::min_length_px, FiniteAtLeast(0.0), "shorter images are not observed (px)")
+          .Field("min_depth_m", &C::min_depth_m, FinitePositive(), "endpoints nearer are cut or not observed (m)");
+  return schema;
+}
+
+const OptionSchema<NoiseConfig>& NoiseSchema() {
+  using C = NoiseConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("model", &C::model, NoiseModels(), "endpoint noise distribution")
+          .Field("endpoint_px", &C::endpoint_px, FiniteAtLeast(0.0), "uniform half-width or gaussian sigma (px)")
+          .Field("endpoints", &C::endpoints, EndpointModels(), "fixed or sliding endpoints")
+          .Field("slide_fraction", &C::slide_fraction, InRange(0.0, 0.5, "[)"), "sliding: how far endpoints slide");
+  return schema;
+}
+
+const OptionSchema<OutlierConfig>& OutlierSchema() {
+  using C = OutlierConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>().Field("rate", &C::rate, InRange(0.0, 1.0), "probability a segment is replaced by a random one");
+  return schema;
+}
+
+const OptionSchema<SeedOverrides>& SeedOverridesSchema() {
+  using C = SeedOverrides;
+  static const OptionSchema<C> schema = [] {
+    OptionSchema<C> s;
+    for (auto [key, member] : {std::pair{"scene", &C::scene}, std::pair{"motion", &C::motion},
+                               std::pair{"noise", &C::noise}, std::pair{"outliers", &C::outliers}}) {
+      const std::string k = key;
+      const auto m = member;
+      std::move(s).Custom(
+          k, [k, m](JsonReader& r, C* c) { ReadSeedOverride(r, k, &(c->*m)); },
+          [m](const C& c) { return SeedToJson(c.*m); }, "null or an integer", "base seed of this stream (null: seed)");
+    }
+    return s;
+  }();
+  return schema;
+}
+
+const OptionSchema<SimulationConfig>& SimulationSchema() {
+  using C = SimulationConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("seed", &C::seed, AnyNumber(), "base seed of every stream")
+          .Child("seeds", &C::seeds, SeedOverridesSchema(), "per-stream base seeds")
+          .Field("frames", &C::frames, AtLeast(1), "frames")
+          .Field("frame_rate", &C::frame_rate, FinitePositive(), "Hz")
+          .Custom(
+              "rig",
+              [](JsonReader& r, C* c) {
+                if (const nlohmann::json* rig = r.Find("rig")) c->rig = StereoRigFromJson(*rig, r.where(), "rig");
+              },
+              [](const C& c) { return StereoRigToJson(c.rig); }, "a stereo rig (docs/formats.md)",
+              "the rig the images are made with",
+              [](const C& c) {
+                try {
+                  c.rig.Check();
+                } catch (const std::invalid_argument& e) {
+                  return std::string(e.what());
+                }
+                return std::string();
+              })
+          .Field("focal_error_px", &C::focal_error_px, AnyNumber().Finite(), "added to the tracker's focal lengths")
+          .Field("max_features", &C::max_features, AtLeast(0).Note("0 = all lines"), "lines with id < this only")
+          .Child("scene", &C::scene, SceneSchema(), "the 3-D lines")
+          // The scene-dependent defaults: each scene with the motion and observation model it is for.
+          .OnRead([](C* c) {
+            c->motion.type = DefaultMotionFor(c->scene.type);
+            c->observation.clip_to_image = c->scene.type != SceneType::kPaper;
+          })
+          .Child("motion", &C::motion, MotionSchema(), "the camera's motion")
+          .Child("observation", &C::observation, ObservationSchema(), "what is observed")
+          .Child("noise", &C::noise, NoiseSchema(), "endpoint noise")
+          .Child("outliers", &C::outliers, OutlierSchema(), "wrong segments")
+          .Check("frames",
+                 [](const C& c) {
+                   return c.motion.type == MotionType::kLoop && c.frames < 2 ? "a loop needs at least 2 frames" : "";
+                 })
+          .Check("focal_error_px",
+                 [](const C& c) {
+                   for (const PinholeCamera* camera : {&c.rig.left, &c.rig.right}) {
+                     if (std::min(camera->fx, camera->fy) + c.focal_error_px <= 0.0) {
+                       return "makes a focal length of the tracker's rig non-positive";
+                     }
+                   }
+                   return "";
+                 })
+          .Check("observation.min_length_px", [](const C& c) {
+            return c.observation.min_length_px > 0.5 * std::min(c.rig.width, c.rig.height)
+                       ? "must be at most half the smaller image side"
+                       : "";
+          });
+  return schema;
+}
+
 }  // namespace
 
-const char* SceneTypeName(SceneType type) { return NameOf(kSceneTypes, type); }
-const char* MotionTypeName(MotionType type) { return NameOf(kMotionTypes, type); }
-const char* NoiseModelName(NoiseModel model) { return NameOf(kNoiseModels, model); }
-const char* EndpointModelName(EndpointModel model) { return NameOf(kEndpointModels, model); }
+const char* SceneTypeName(SceneType type) { return EnumName(SceneTypes(), type); }
+const char* MotionTypeName(MotionType type) { return EnumName(MotionTypes(), type); }
+const char* NoiseModelName(NoiseModel model) { return EnumName(NoiseModels(), model); }
+const char* EndpointModelName(EndpointModel model) { return EnumName(EndpointModels(), model); }
 
 MotionType DefaultMotionFor(SceneType type) {
   switch (type) {
@@ -99,258 +316,17 @@ StereoRig SimulationConfig::TrackerRig() const {
   return tracker_rig;
 }
 
-void SimulationConfig::Check(const std::string& where) const {
-  const auto fail = [&](const std::string& key, const std::string& reason) {
-    throw ConfigError(where + ": key '" + key + "': " + reason);
-  };
-  // Written as !(x >= lo) so that NaN fails too.
-  const auto at_least = [&](double value, double lo, const std::string& key) {
-    if (!(value >= lo) || !std::isfinite(value)) fail(key, "must be a finite number >= " + nlohmann::json(lo).dump());
-  };
-  const auto positive = [&](double value, const std::string& key) {
-    if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be a finite number > 0");
-  };
-
-  if (frames < 1) fail("frames", "must be >= 1");
-  if (motion.type == MotionType::kLoop && frames < 2) fail("frames", "a loop needs at least 2 frames");
-  positive(frame_rate, "frame_rate");
-  try {
-    rig.Check();
-  } catch (const std::invalid_argument& e) {
-    fail("rig", e.what());
-  }
-  if (!std::isfinite(focal_error_px)) fail("focal_error_px", "must be finite");
-  for (const PinholeCamera* camera : {&rig.left, &rig.right}) {
-    if (std::min(camera->fx, camera->fy) + focal_error_px <= 0.0) {
-      fail("focal_error_px", "makes a focal length of the tracker's rig non-positive");
-    }
-  }
-  if (max_features < 0) fail("max_features", "must be >= 0 (0 = all lines)");
-
-  const PaperSceneConfig& paper = scene.paper;
-  if (paper.lines < 1) fail("scene.paper.lines", "must be >= 1");
-  positive(paper.min_length_m, "scene.paper.min_length_m");
-  if (!(paper.max_length_m >= paper.min_length_m) || !std::isfinite(paper.max_length_m)) {
-    fail("scene.paper.max_length_m", "must be finite and >= scene.paper.min_length_m");
-  }
-  if (!paper.box_center_m.allFinite()) fail("scene.paper.box_center_m", "must be finite");
-  if (!paper.box_size_m.allFinite() || (paper.box_size_m.array() < 0.0).any()) {
-    fail("scene.paper.box_size_m", "must be finite and >= 0");
-  }
-  // The furniture has fixed sizes (a 2 m bookshelf, 2.05 m doors): smaller rooms cannot hold it.
-  const RoomSceneConfig& room = scene.room;
-  at_least(room.width_m, 4.6, "scene.room.width_m");
-  at_least(room.depth_m, 4.0, "scene.room.depth_m");
-  at_least(room.height_m, 2.3, "scene.room.height_m");
-  if (!(room.camera_height_m > 0.0 && room.camera_height_m < room.height_m)) {
-    fail("scene.room.camera_height_m", "must be between the floor and the ceiling");
-  }
-  const CorridorSceneConfig& corridor = scene.corridor;
-  at_least(corridor.width_m, 1.2, "scene.corridor.width_m");
-  at_least(corridor.height_m, 2.3, "scene.corridor.height_m");
-  at_least(corridor.length_m, 6.0, "scene.corridor.length_m");
-  if (!(corridor.camera_height_m > 0.0 && corridor.camera_height_m < corridor.height_m)) {
-    fail("scene.corridor.camera_height_m", "must be between the floor and the ceiling");
-  }
-
-  const SinusoidMotionConfig& sinusoid = motion.sinusoid;
-  at_least(sinusoid.max_rotation_deg, 0.0, "motion.sinusoid.max_rotation_deg");
-  if (sinusoid.max_rotation_deg >= 180.0) fail("motion.sinusoid.max_rotation_deg", "must be < 180");
-  at_least(sinusoid.max_translation_m, 0.0, "motion.sinusoid.max_translation_m");
-  // Below 2 frames a sampled sinusoid aliases into a slower one.
-  at_least(sinusoid.period_min_frames, 2.0, "motion.sinusoid.period_min_frames");
-  if (!(sinusoid.period_max_frames >= sinusoid.period_min_frames) || !std::isfinite(sinusoid.period_max_frames)) {
-    fail("motion.sinusoid.period_max_frames", "must be finite and >= motion.sinusoid.period_min_frames");
-  }
-  const LoopMotionConfig& loop = motion.loop;
-  at_least(loop.radius_x_m, 0.0, "motion.loop.radius_x_m");
-  at_least(loop.radius_z_m, 0.0, "motion.loop.radius_z_m");
-  at_least(loop.yaw_amplitude_deg, 0.0, "motion.loop.yaw_amplitude_deg");
-  if (loop.yaw_amplitude_deg >= 90.0) fail("motion.loop.yaw_amplitude_deg", "must be < 90");
-  at_least(loop.wobble_height_m, 0.0, "motion.loop.wobble_height_m");
-  at_least(loop.wobble_deg, 0.0, "motion.loop.wobble_deg");
-  if (loop.wobble_deg >= 45.0) fail("motion.loop.wobble_deg", "must be < 45");
-  const ForwardMotionConfig& forward = motion.forward;
-  at_least(forward.step_m, 0.0, "motion.forward.step_m");
-  at_least(forward.wobble_m, 0.0, "motion.forward.wobble_m");
-  at_least(forward.wobble_deg, 0.0, "motion.forward.wobble_deg");
-  if (forward.wobble_deg >= 45.0) fail("motion.forward.wobble_deg", "must be < 45");
-  // The shortest drawn period is half of this: keep it >= 2 frames (no aliasing).
-  at_least(forward.wobble_period_frames, 4.0, "motion.forward.wobble_period_frames");
-
-  // The outlier sampler draws segments of at least min_length_px inside the image.
-  at_least(observation.min_length_px, 0.0, "observation.min_length_px");
-  if (observation.min_length_px > 0.5 * std::min(rig.width, rig.height)) {
-    fail("observation.min_length_px", "must be at most half the smaller image side");
-  }
-  positive(observation.min_depth_m, "observation.min_depth_m");
-
-  at_least(noise.endpoint_px, 0.0, "noise.endpoint_px");
-  if (!(noise.slide_fraction >= 0.0 && noise.slide_fraction < 0.5)) {
-    fail("noise.slide_fraction", "must be in [0, 0.5)");
-  }
-  if (!(outliers.rate >= 0.0 && outliers.rate <= 1.0)) fail("outliers.rate", "must be in [0, 1]");
-}
+void SimulationConfig::Check(const std::string& where) const { SimulationSchema().Validate(*this, where, ""); }
 
 SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::string& where) {
   SimulationConfig c;
   JsonReader r(j, where);
-  r.Get("seed", &c.seed);
-  {
-    JsonReader s = r.Child("seeds");
-    GetSeedOverride(s, "scene", &c.seeds.scene);
-    GetSeedOverride(s, "motion", &c.seeds.motion);
-    GetSeedOverride(s, "noise", &c.seeds.noise);
-    GetSeedOverride(s, "outliers", &c.seeds.outliers);
-    s.RejectUnknownKeys();
-  }
-  r.Get("frames", &c.frames);
-  r.Get("frame_rate", &c.frame_rate);
-  if (const nlohmann::json* rig = r.Find("rig")) c.rig = StereoRigFromJson(*rig, where, "rig");
-  r.Get("focal_error_px", &c.focal_error_px);
-  r.Get("max_features", &c.max_features);
-
-  {
-    JsonReader s = r.Child("scene");
-    GetEnum(s, "type", kSceneTypes, &c.scene.type);
-    JsonReader paper = s.Child("paper");
-    paper.Get("lines", &c.scene.paper.lines);
-    paper.Get("min_length_m", &c.scene.paper.min_length_m).Get("max_length_m", &c.scene.paper.max_length_m);
-    GetVector3(paper, "box_center_m", &c.scene.paper.box_center_m);
-    GetVector3(paper, "box_size_m", &c.scene.paper.box_size_m);
-    paper.RejectUnknownKeys();
-    JsonReader room = s.Child("room");
-    room.Get("width_m", &c.scene.room.width_m)
-        .Get("depth_m", &c.scene.room.depth_m)
-        .Get("height_m", &c.scene.room.height_m)
-        .Get("camera_height_m", &c.scene.room.camera_height_m);
-    room.RejectUnknownKeys();
-    JsonReader corridor = s.Child("corridor");
-    corridor.Get("width_m", &c.scene.corridor.width_m)
-        .Get("height_m", &c.scene.corridor.height_m)
-        .Get("length_m", &c.scene.corridor.length_m)
-        .Get("camera_height_m", &c.scene.corridor.camera_height_m);
-    corridor.RejectUnknownKeys();
-    s.RejectUnknownKeys();
-  }
-  // The scene-dependent defaults: each scene with the motion and observation model it is for.
-  c.motion.type = DefaultMotionFor(c.scene.type);
-  c.observation.clip_to_image = c.scene.type != SceneType::kPaper;
-  {
-    JsonReader m = r.Child("motion");
-    GetEnum(m, "type", kMotionTypes, &c.motion.type);
-    JsonReader sinusoid = m.Child("sinusoid");
-    sinusoid.Get("max_rotation_deg", &c.motion.sinusoid.max_rotation_deg)
-        .Get("max_translation_m", &c.motion.sinusoid.max_translation_m)
-        .Get("period_min_frames", &c.motion.sinusoid.period_min_frames)
-        .Get("period_max_frames", &c.motion.sinusoid.period_max_frames);
-    sinusoid.RejectUnknownKeys();
-    JsonReader loop = m.Child("loop");
-    loop.Get("radius_x_m", &c.motion.loop.radius_x_m)
-        .Get("radius_z_m", &c.motion.loop.radius_z_m)
-        .Get("yaw_amplitude_deg", &c.motion.loop.yaw_amplitude_deg)
-        .Get("wobble_height_m", &c.motion.loop.wobble_height_m)
-        .Get("wobble_deg", &c.motion.loop.wobble_deg);
-    loop.RejectUnknownKeys();
-    JsonReader forward = m.Child("forward");
-    forward.Get("step_m", &c.motion.forward.step_m)
-        .Get("wobble_m", &c.motion.forward.wobble_m)
-        .Get("wobble_deg", &c.motion.forward.wobble_deg)
-        .Get("wobble_period_frames", &c.motion.forward.wobble_period_frames);
-    forward.RejectUnknownKeys();
-    m.RejectUnknownKeys();
-  }
-  {
-    JsonReader o = r.Child("observation");
-    o.Get("clip_to_image", &c.observation.clip_to_image)
-        .Get("min_length_px", &c.observation.min_length_px)
-        .Get("min_depth_m", &c.observation.min_depth_m);
-    o.RejectUnknownKeys();
-  }
-  {
-    JsonReader n = r.Child("noise");
-    GetEnum(n, "model", kNoiseModels, &c.noise.model);
-    n.Get("endpoint_px", &c.noise.endpoint_px);
-    GetEnum(n, "endpoints", kEndpointModels, &c.noise.endpoints);
-    n.Get("slide_fraction", &c.noise.slide_fraction);
-    n.RejectUnknownKeys();
-  }
-  {
-    JsonReader o = r.Child("outliers");
-    o.Get("rate", &c.outliers.rate);
-    o.RejectUnknownKeys();
-  }
+  SimulationSchema().ReadFields(r, &c);
   r.RejectUnknownKeys();
   c.Check(where);
   return c;
 }
 
-nlohmann::json SimulationConfigToJson(const SimulationConfig& c) {
-  const PaperSceneConfig& paper = c.scene.paper;
-  const RoomSceneConfig& room = c.scene.room;
-  const CorridorSceneConfig& corridor = c.scene.corridor;
-  const SinusoidMotionConfig& sinusoid = c.motion.sinusoid;
-  const LoopMotionConfig& loop = c.motion.loop;
-  const ForwardMotionConfig& forward = c.motion.forward;
-  return {
-      {"seed", c.seed},
-      {"seeds",
-       {{"scene", SeedToJson(c.seeds.scene)},
-        {"motion", SeedToJson(c.seeds.motion)},
-        {"noise", SeedToJson(c.seeds.noise)},
-        {"outliers", SeedToJson(c.seeds.outliers)}}},
-      {"frames", c.frames},
-      {"frame_rate", c.frame_rate},
-      {"rig", StereoRigToJson(c.rig)},
-      {"focal_error_px", c.focal_error_px},
-      {"max_features", c.max_features},
-      {"scene",
-       {{"type", SceneTypeName(c.scene.type)},
-        {"paper",
-         {{"lines", paper.lines},
-          {"min_length_m", paper.min_length_m},
-          {"max_length_m", paper.max_length_m},
-          {"box_center_m", Vector3ToJson(paper.box_center_m)},
-          {"box_size_m", Vector3ToJson(paper.box_size_m)}}},
-        {"room",
-         {{"width_m", room.width_m},
-          {"depth_m", room.depth_m},
-          {"height_m", room.height_m},
-          {"camera_height_m", room.camera_height_m}}},
-        {"corridor",
-         {{"width_m", corridor.width_m},
-          {"height_m", corridor.height_m},
-          {"length_m", corridor.length_m},
-          {"camera_height_m", corridor.camera_height_m}}}}},
-      {"motion",
-       {{"type", MotionTypeName(c.motion.type)},
-        {"sinusoid",
-         {{"max_rotation_deg", sinusoid.max_rotation_deg},
-          {"max_translation_m", sinusoid.max_translation_m},
-          {"period_min_frames", sinusoid.period_min_frames},
-          {"period_max_frames", sinusoid.period_max_frames}}},
-        {"loop",
-         {{"radius_x_m", loop.radius_x_m},
-          {"radius_z_m", loop.radius_z_m},
-          {"yaw_amplitude_deg", loop.yaw_amplitude_deg},
-          {"wobble_height_m", loop.wobble_height_m},
-          {"wobble_deg", loop.wobble_deg}}},
-        {"forward",
-         {{"step_m", forward.step_m},
-          {"wobble_m", forward.wobble_m},
-          {"wobble_deg", forward.wobble_deg},
-          {"wobble_period_frames", forward.wobble_period_frames}}}}},
-      {"observation",
-       {{"clip_to_image", c.observation.clip_to_image},
-        {"min_length_px", c.observation.min_length_px},
-        {"min_depth_m", c.observation.min_depth_m}}},
-      {"noise",
-       {{"model", NoiseModelName(c.noise.model)},
-        {"endpoint_px", c.noise.endpoint_px},
-        {"endpoints", EndpointModelName(c.noise.endpoints)},
-        {"slide_fraction", c.noise.slide_fraction}}},
-      {"outliers", {{"rate", c.outliers.rate}}},
-  };
-}
+nlohmann::json SimulationConfigToJson(const SimulationConfig& c) { return SimulationSchema().ToJson(c); }
 
 }  // namespace slt

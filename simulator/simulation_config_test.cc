@@ -109,9 +109,9 @@ TEST(SimulationConfig, SeedOverrides) {
 
 TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_px": -1}})"),
-            "sim.json: key 'noise.endpoint_px': must be a finite number >= 0.0");
+            "sim.json: key 'noise.endpoint_px': must be a finite number >= 0");
   EXPECT_EQ(ConfigErrorOf(R"({"scene": {"type": "forest"}})"),
-            "sim.json: key 'scene.type': unknown value \"forest\" (expected one of \"paper\", \"room\", \"corridor\")");
+            "sim.json: key 'scene.type': must be \"paper\", \"room\" or \"corridor\"");
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_pix": 1}})"), "sim.json: key 'noise.endpoint_pix': unknown key");
   EXPECT_EQ(ConfigErrorOf(R"({"nosie": {}})"), "sim.json: key 'nosie': unknown key");
   EXPECT_EQ(ConfigErrorOf(R"({"frames": 2.5})"), "sim.json: key 'frames': expected an integer, got 2.5");

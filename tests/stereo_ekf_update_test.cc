@@ -84,7 +84,7 @@ StereoEkfOptions PaperFilter(bool two_features_suffice) {
   ApplyPaperPreset(&options);
   if (two_features_suffice) {
     options.min_features = 2;
-    options.count_features = "measurable";
+    options.count_features = FeatureCount::kMeasurable;
   }
   return options;
 }
@@ -96,7 +96,7 @@ TrackerOutput TrackFirstUpdate(StereoEkfTracker* tracker) {
   return tracker->Track(StereoFrame{1.0 / 30.0, {}, {}});
 }
 
-class FirstUpdate : public ::testing::TestWithParam<std::string> {};
+class FirstUpdate : public ::testing::TestWithParam<FilterState> {};
 
 TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
   StereoEkfOptions options = PaperFilter(false);
@@ -306,7 +306,7 @@ TEST(FirstUpdate, NoiseAdaptationCountsTheRowsMeasured) {
   StereoEkfTracker tracker(options, TwoRowFeatures(costs), nlohmann::json::object());
   ASSERT_EQ(TrackFirstUpdate(&tracker).features_used, 5);
   const double rho = 3.0 * (ChiSquareQuantile(0.5, 4) / ChiSquareQuantile(0.5, 2)) / 3.357 * 10.0 / 4.0;
-  const double a = 0.2 * options.noise_adaptation_rate;
+  const double a = 0.2 * 0.3;
   EXPECT_NEAR(tracker.noise_scale() * tracker.noise_scale(), (1.0 - a) + a * rho, 1e-9);
 }
 
@@ -327,7 +327,10 @@ TEST(FirstUpdate, HealthCountsTheRowsMeasured) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values("velocity", "pose_velocity"));
+INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values(FilterState::kVelocity, FilterState::kPoseVelocity),
+                         [](const ::testing::TestParamInfo<FilterState>& info) {
+                           return info.param == FilterState::kVelocity ? "velocity" : "pose_velocity";
+                         });
 
 }  // namespace
 }  // namespace slt

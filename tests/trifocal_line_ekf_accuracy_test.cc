@@ -40,8 +40,8 @@ TEST(TrifocalLineEkfAccuracy, FaithfulFixedRIsTheResidualSpreadAtTheTruePose) {
   LineTransferOptions options;
   JsonReader reader(tracker->Options().at("measurement"), "test", "measurement");
   ReadLineTransferOptions(reader, &options);
-  ASSERT_EQ(options.residual, "theta_lambda");
-  ASSERT_EQ(options.noise, "fixed");
+  ASSERT_EQ(options.residual, LineResidual::kThetaLambda);
+  ASSERT_EQ(options.noise, MeasurementNoise::kFixed);
   LineTransferModel model(options);
 
   std::vector<double> residuals[4];

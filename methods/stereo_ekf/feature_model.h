@@ -13,6 +13,7 @@
 #include <bitset>
 #include <nlohmann/json.hpp>
 
+#include "common/options.h"
 #include "dataset/stereo_sequence.h"
 #include "geometry/rigid3.h"
 
@@ -59,6 +60,13 @@ struct FeatureBlock {
   }
 };
 
+// A model's measurement covariance R: propagated from the endpoint noise through the residual,
+// or the paper's fixed diagonal R.
+enum class MeasurementNoise { kPropagated, kFixed };
+inline EnumNames<MeasurementNoise> MeasurementNoiseNames() {
+  return {{MeasurementNoise::kPropagated, "propagated"}, {MeasurementNoise::kFixed, "fixed"}};
+}
+
 // Validation-gate thresholds (eq. 20) by the number of residual rows a feature measures.
 struct GateThresholds {
   double by_dimension[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
@@ -71,7 +79,7 @@ class FeatureModel {
 
   virtual void Reset(const StereoRig& rig) = 0;
   // Makes `frame` the reference pair (I_1, I'_1). Returns the number of stereo-matched features
-  // it holds that can be measured (not degenerate): the count feature replacement compares
+  // it holds that can be measured (not degenerate): the count a new reference pair compares
   // with.
   virtual int SetReference(const StereoFrame& frame) = 0;
   // Matches `frame` against the reference; features are then indexed 0 .. NumFeatures()-1.

@@ -21,7 +21,7 @@ void PoseVelocityFilter::Reset(const StereoEkfOptions& options) {
 }
 
 void PoseVelocityFilter::Predict() {
-  if (options_.state == "velocity") {
+  if (options_.state == FilterState::kVelocity) {
     // The paper's filter: M_{t-1} is exact, only the velocity is uncertain.
     covariance_.topRows<6>().setZero();
     covariance_.leftCols<6>().setZero();
@@ -32,7 +32,7 @@ void PoseVelocityFilter::Predict() {
   for (int i = 6; i < 9; ++i) covariance_(i, i) += qm;
   for (int i = 9; i < 12; ++i) covariance_(i, i) += qr;
 
-  const Rigid3d step = options_.integration == "first_order" ? FirstOrderSE3(velocity_) : ExpSE3(velocity_);
+  const Rigid3d step = options_.integration == Integration::kFirstOrder ? FirstOrderSE3(velocity_) : ExpSE3(velocity_);
   // F = [[Ad(step), J_l(xi)], [0, I]]; P <- F P F^T, written blockwise.
   const Matrix6d ad = Adjoint(step);
   // J_l to first order: per-frame twists are small and it only enters the covariance.

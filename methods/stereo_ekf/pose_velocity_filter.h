@@ -6,7 +6,7 @@
 //   xi_t = xi_{t-1} + eta,  eta ~ N(0, Q);    M_t = Exp(xi_t) M_{t-1}
 // whose error propagation is e_t = F e_{t-1} with
 //   F = [[Ad(Exp(xi)), J_l(xi)], [0, I]],    P_t|t-1 = F (P + diag(0, Q)) F^T.
-// With state = "velocity" (the paper's filter, eq. 10), the pose block is reset to zero before
+// With state FilterState::kVelocity (the paper's filter, eq. 10), the pose block is reset to zero before
 // every prediction: M_{t-1} is taken as exact and only the velocity is estimated.
 //
 // Measurements inform the pose only (their Jacobian is [H 0]), so an update is a MAP solve on

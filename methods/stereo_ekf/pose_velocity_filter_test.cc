@@ -11,7 +11,7 @@ namespace {
 
 using Matrix12d = PoseVelocityFilter::Matrix12d;
 
-StereoEkfOptions Options(const std::string& state) {
+StereoEkfOptions Options(FilterState state) {
   StereoEkfOptions o;
   o.state = state;
   return o;
@@ -41,7 +41,7 @@ Vector6d SomeDelta() { return (Vector6d() << 0.008, -0.004, 0.01, 0.012, -0.006,
 
 TEST(PoseVelocityFilter, FirstPredictionFromRestIsThePriorPlusQ) {
   // At rest (xi = 0) F = [[I, I], [0, I]]: the pose inherits the velocity's uncertainty.
-  for (const std::string state : {"velocity", "pose_velocity"}) {
+  for (const FilterState state : {FilterState::kVelocity, FilterState::kPoseVelocity}) {
     const StereoEkfOptions o = Options(state);
     PoseVelocityFilter f;
     f.Reset(o);
@@ -52,9 +52,9 @@ TEST(PoseVelocityFilter, FirstPredictionFromRestIsThePriorPlusQ) {
     Vector6d diag;
     diag << vm, vm, vm, vr, vr, vr;
     const Matrix6d d = diag.asDiagonal();
-    EXPECT_LT((f.covariance().topLeftCorner<6, 6>() - d).norm(), 1e-15) << state;
-    EXPECT_LT((f.covariance().topRightCorner<6, 6>() - d).norm(), 1e-15) << state;
-    EXPECT_LT((f.covariance().bottomRightCorner<6, 6>() - d).norm(), 1e-15) << state;
+    EXPECT_LT((f.covariance().topLeftCorner<6, 6>() - d).norm(), 1e-15) << StereoEkfOptionsToJson(o)["state"];
+    EXPECT_LT((f.covariance().topRightCorner<6, 6>() - d).norm(), 1e-15) << StereoEkfOptionsToJson(o)["state"];
+    EXPECT_LT((f.covariance().bottomRightCorner<6, 6>() - d).norm(), 1e-15) << StereoEkfOptionsToJson(o)["state"];
     EXPECT_DOUBLE_EQ(vm, 0.02 * 0.02 + 0.002 * 0.002);  // the defaults, written out
     EXPECT_TRUE(f.cam_from_ref().translation.isZero());
   }
@@ -81,7 +81,7 @@ TEST(PoseVelocityFilter, PredictionPropagatesWithTheMotionModelsJacobian) {
   // Bring the filter to a moving state with a full covariance (a correction couples pose and
   // velocity), then compare its prediction with F (P + diag(0, Q)) F^T (eq. 18), F taken
   // numerically from the motion model.
-  const StereoEkfOptions o = Options("pose_velocity");
+  const StereoEkfOptions o = Options(FilterState::kPoseVelocity);
   PoseVelocityFilter f = Moving(o, SomeDelta(), 0.3);
   ASSERT_GT(f.velocity().norm(), 1e-3);
   const Rigid3d m = f.cam_from_ref();
@@ -106,7 +106,7 @@ TEST(PoseVelocityFilter, PredictionPropagatesWithTheMotionModelsJacobian) {
 TEST(PoseVelocityFilter, CorrectionIsTheKalmanUpdateOfTheFullState) {
   // Measuring the pose (H = [I 0]) with covariance R: the filter's split update (pose MAP by the
   // caller, velocity by the Gaussian conditional) equals the 12-D Kalman update.
-  const StereoEkfOptions o = Options("pose_velocity");
+  const StereoEkfOptions o = Options(FilterState::kPoseVelocity);
   PoseVelocityFilter f = Moving(o, (Vector6d() << 0.006, 0.002, -0.004, 0.01, 0.003, -0.007).finished(), 0.5);
   f.Predict();  // a prior with pose-velocity correlation
 
@@ -135,7 +135,7 @@ TEST(PoseVelocityFilter, CorrectionIsTheKalmanUpdateOfTheFullState) {
 TEST(PoseVelocityFilter, VelocityStateForgetsThePoseUncertainty) {
   // The paper's filter (eq. 10): before each prediction M_{t-1} is exact, so the predicted pose
   // covariance is the velocity's, carried through J_l, whatever the pose covariance was.
-  const StereoEkfOptions o = Options("velocity");
+  const StereoEkfOptions o = Options(FilterState::kVelocity);
   PoseVelocityFilter f = Moving(o, SomeDelta(), 0.3);
   const Matrix6d p_vv = f.covariance().bottomRightCorner<6, 6>() + VelocityNoise(o);
   const Matrix6d jl = LeftJacobianSE3FirstOrder(f.velocity());

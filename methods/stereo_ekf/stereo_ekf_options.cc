@@ -63,108 +63,66 @@ double ChiSquareQuantile(double probability, int dof) {
   return x;
 }
 
-double StereoEkfOptions::GateThreshold(int dimension) const {
-  return gate_threshold > 0.0 ? gate_threshold : ChiSquareQuantile(gate_probability, dimension);
+double StereoEkfOptions::GateThreshold(int dimension) const { return ChiSquareQuantile(gate_probability, dimension); }
+
+const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
+  using O = StereoEkfOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>()
+          .Field("state", &O::state, {{FilterState::kVelocity, "velocity"}, {FilterState::kPoseVelocity, "pose_velocity"}},
+                 "filter state: the paper's velocity (eq. 10) or pose and velocity")
+          .Field("integration", &O::integration, {{Integration::kExp, "exp"}, {Integration::kFirstOrder, "first_order"}},
+                 "pose prediction: Exp(xi) M (eq. 11) or (I + Hat(xi)) M (eq. 12)")
+          .Field("accel_sigma_m", &O::accel_sigma_m, Positive(), "velocity change per frame, m / frame^2 (eq. 18)")
+          .Field("accel_sigma_rad", &O::accel_sigma_rad, Positive(), "velocity change per frame, rad / frame^2 (eq. 18)")
+          .Field("initial_velocity_sigma_m", &O::initial_velocity_sigma_m, Positive(), "velocity prior at the start, m / frame")
+          .Field("initial_velocity_sigma_rad", &O::initial_velocity_sigma_rad, Positive(),
+                 "velocity prior at the start, rad / frame")
+          .Field("max_iterations", &O::max_iterations, InRange(1, 50), "1 = the paper's EKF update; more = iterated EKF")
+          .Field("iteration_tolerance", &O::iteration_tolerance, AtLeast(0.0),
+                 "stop iterating below this step, in posterior standard deviations")
+          .Field("gate_probability", &O::gate_probability, InRange(0.0, 1.0, "()"),
+                 "validation gate (eq. 20): chi-square quantile of this probability")
+          .Field("adaptive_noise", &O::adaptive_noise, "scale R online from the posterior residuals")
+          .Field("robust", &O::robust, "RANSAC start when the prior is weak or the filter unhealthy")
+          .Field("robust_start_frames", &O::robust_start_frames, AtLeast(0), "frames after the start seeded by RANSAC")
+          .Field("ransac_max_iterations", &O::ransac_max_iterations, AtLeast(1), "RANSAC samples at most")
+          .Field("ransac_confidence", &O::ransac_confidence, InRange(0.0, 1.0, "()"),
+                 "RANSAC adaptive stopping: probability of an all-inlier sample")
+          .Field("seed", &O::seed, AnyNumber(), "seed of the RANSAC sampler")
+          .Field("min_consensus", &O::min_consensus, AtLeast(2), "features a RANSAC solve needs to count")
+          .Field("lost_velocity_decay", &O::lost_velocity_decay, InRange(0.0, 1.0),
+                 "velocity factor per frame without update (1 = coast)")
+          .Field("min_features", &O::min_features, AtLeast(2).Note("two features over-determine the pose"),
+                 "new reference pair below this many remaining features (the paper's k_c)")
+          .Field("min_feature_fraction", &O::min_feature_fraction, InRange(0.0, 1.0),
+                 "new reference pair below this fraction of the reference's features")
+          .Field("count_features", &O::count_features,
+                 {{FeatureCount::kMeasurable, "measurable"}, {FeatureCount::kGated, "gated"}},
+                 "remaining features: measurable, or also inside the gate (the paper's)");
+  return schema;
 }
 
 void StereoEkfOptions::Check(const std::string& where, const std::string& path) const {
-  auto fail = [&](const std::string& key, const std::string& why) {
-    ThrowOptionError(where, path, key, why);
-  };
-  if (state != "velocity" && state != "pose_velocity") fail("state", "must be \"velocity\" or \"pose_velocity\"");
-  if (integration != "exp" && integration != "first_order") fail("integration", "must be \"exp\" or \"first_order\"");
-  if (!(accel_sigma_m > 0.0)) fail("accel_sigma_m", "must be > 0");
-  if (!(accel_sigma_rad > 0.0)) fail("accel_sigma_rad", "must be > 0");
-  if (!(initial_velocity_sigma_m > 0.0)) fail("initial_velocity_sigma_m", "must be > 0");
-  if (!(initial_velocity_sigma_rad > 0.0)) fail("initial_velocity_sigma_rad", "must be > 0");
-  if (max_iterations < 1 || max_iterations > 50) fail("max_iterations", "must be in [1, 50]");
-  if (!(iteration_tolerance >= 0.0)) fail("iteration_tolerance", "must be >= 0");
-  if (!(gate_probability > 0.0 && gate_probability < 1.0)) fail("gate_probability", "must be in (0, 1)");
-  if (!(gate_threshold >= 0.0)) fail("gate_threshold", "must be >= 0 (0 = use gate_probability)");
-  if (!(noise_adaptation_rate > 0.0 && noise_adaptation_rate <= 1.0)) fail("noise_adaptation_rate", "must be in (0, 1]");
-  if (!(min_noise_scale > 0.0)) fail("min_noise_scale", "must be > 0");
-  if (!(max_noise_scale >= min_noise_scale)) fail("max_noise_scale", "must be >= min_noise_scale");
-  if (robust_start_frames < 0) fail("robust_start_frames", "must be >= 0");
-  if (!(min_inlier_fraction >= 0.0 && min_inlier_fraction <= 1.0)) fail("min_inlier_fraction", "must be in [0, 1]");
-  if (!(max_normalized_cost > 0.0)) fail("max_normalized_cost", "must be > 0");
-  if (ransac_max_iterations < 1) fail("ransac_max_iterations", "must be >= 1");
-  if (!(ransac_confidence > 0.0 && ransac_confidence < 1.0)) fail("ransac_confidence", "must be in (0, 1)");
-  if (min_consensus < 2) fail("min_consensus", "must be >= 2");
-  if (!(lost_velocity_decay >= 0.0 && lost_velocity_decay <= 1.0)) fail("lost_velocity_decay", "must be in [0, 1]");
-  if (count_features != "measurable" && count_features != "gated") {
-    fail("count_features", "must be \"measurable\" or \"gated\"");
-  }
-  if (min_features < 2) fail("min_features", "must be >= 2 (two features over-determine the pose)");
-  if (!(min_feature_fraction >= 0.0 && min_feature_fraction <= 1.0)) fail("min_feature_fraction", "must be in [0, 1]");
+  StereoEkfOptionsSchema().Validate(*this, where, path);
 }
 
-void ApplyPaperPreset(StereoEkfOptions* o) {
-  o->state = "velocity";
-  o->max_iterations = 1;
+void DisableRobustness(StereoEkfOptions* o) {
   o->robust = false;
   o->adaptive_noise = false;
-  o->min_feature_fraction = 0.0;
-  o->count_features = "gated";
   o->lost_velocity_decay = 1.0;
 }
 
-void ReadStereoEkfOptions(JsonReader& r, StereoEkfOptions* o) {
-  r.Get("state", &o->state)
-      .Get("integration", &o->integration)
-      .Get("accel_sigma_m", &o->accel_sigma_m)
-      .Get("accel_sigma_rad", &o->accel_sigma_rad)
-      .Get("initial_velocity_sigma_m", &o->initial_velocity_sigma_m)
-      .Get("initial_velocity_sigma_rad", &o->initial_velocity_sigma_rad)
-      .Get("max_iterations", &o->max_iterations)
-      .Get("iteration_tolerance", &o->iteration_tolerance)
-      .Get("gate_probability", &o->gate_probability)
-      .Get("gate_threshold", &o->gate_threshold)
-      .Get("adaptive_noise", &o->adaptive_noise)
-      .Get("noise_adaptation_rate", &o->noise_adaptation_rate)
-      .Get("min_noise_scale", &o->min_noise_scale)
-      .Get("max_noise_scale", &o->max_noise_scale)
-      .Get("robust", &o->robust)
-      .Get("robust_start_frames", &o->robust_start_frames)
-      .Get("min_inlier_fraction", &o->min_inlier_fraction)
-      .Get("max_normalized_cost", &o->max_normalized_cost)
-      .Get("ransac_max_iterations", &o->ransac_max_iterations)
-      .Get("ransac_confidence", &o->ransac_confidence)
-      .Get("seed", &o->seed)
-      .Get("min_consensus", &o->min_consensus)
-      .Get("lost_velocity_decay", &o->lost_velocity_decay)
-      .Get("min_features", &o->min_features)
-      .Get("min_feature_fraction", &o->min_feature_fraction)
-      .Get("count_features", &o->count_features);
-  o->Check(r.where(), r.path());
+void ApplyPaperPreset(StereoEkfOptions* o) {
+  DisableRobustness(o);
+  o->state = FilterState::kVelocity;
+  o->max_iterations = 1;
+  o->min_feature_fraction = 0.0;
+  o->count_features = FeatureCount::kGated;
 }
 
-nlohmann::json StereoEkfOptionsToJson(const StereoEkfOptions& o) {
-  return {{"state", o.state},
-          {"integration", o.integration},
-          {"accel_sigma_m", o.accel_sigma_m},
-          {"accel_sigma_rad", o.accel_sigma_rad},
-          {"initial_velocity_sigma_m", o.initial_velocity_sigma_m},
-          {"initial_velocity_sigma_rad", o.initial_velocity_sigma_rad},
-          {"max_iterations", o.max_iterations},
-          {"iteration_tolerance", o.iteration_tolerance},
-          {"gate_probability", o.gate_probability},
-          {"gate_threshold", o.gate_threshold},
-          {"adaptive_noise", o.adaptive_noise},
-          {"noise_adaptation_rate", o.noise_adaptation_rate},
-          {"min_noise_scale", o.min_noise_scale},
-          {"max_noise_scale", o.max_noise_scale},
-          {"robust", o.robust},
-          {"robust_start_frames", o.robust_start_frames},
-          {"min_inlier_fraction", o.min_inlier_fraction},
-          {"max_normalized_cost", o.max_normalized_cost},
-          {"ransac_max_iterations", o.ransac_max_iterations},
-          {"ransac_confidence", o.ransac_confidence},
-          {"seed", o.seed},
-          {"min_consensus", o.min_consensus},
-          {"lost_velocity_decay", o.lost_velocity_decay},
-          {"min_features", o.min_features},
-          {"min_feature_fraction", o.min_feature_fraction},
-          {"count_features", o.count_features}};
-}
+void ReadStereoEkfOptions(JsonReader& r, StereoEkfOptions* o) { StereoEkfOptionsSchema().Read(r, o); }
+
+nlohmann::json StereoEkfOptionsToJson(const StereoEkfOptions& o) { return StereoEkfOptionsSchema().ToJson(o); }
 
 }  // namespace slt

@@ -1,5 +1,5 @@
 // Options of the stereo EKF shared by the trifocal-line and point trackers: state, motion
-// model, update, gate, robustness and feature replacement. Every field has a default; JSON
+// model, update, gate, robustness and new reference pairs. Every field has a default; JSON
 // keys are the field names.
 #pragma once
 
@@ -8,18 +8,26 @@
 #include <string>
 
 #include "common/json_reader.h"
+#include "common/options.h"
 
 namespace slt {
 
+// The paper's state (eq. 10): the six velocities of the twist, the pose at t-1 taken as exact
+// and the whole correction going into the velocity; or pose and velocity (12-D error state), so
+// that a pose correction does not corrupt the velocity used by the next prediction.
+enum class FilterState { kVelocity, kPoseVelocity };
+// M_t = Exp(xi) M_{t-1} (eq. 11), or M_t = (I + Hat(xi)) M_{t-1} (eq. 12), re-orthonormalised.
+enum class Integration { kExp, kFirstOrder };
+// What the new-reference-pair test counts as remaining: the reference's features matched and not
+// degenerate, or also inside the validation gate this frame (the paper's reading, where lines
+// dropped by eq. 20 are not available).
+enum class FeatureCount { kMeasurable, kGated };
+
+// Every field's JSON key, range and one-line doc are declared once, in StereoEkfOptionsSchema()
+// (stereo_ekf_options.cc); the comments here say why a field exists.
 struct StereoEkfOptions {
-  // "velocity": the paper's state, the six velocities of the twist (eq. 10); the pose at t-1
-  //   is taken as exact and the whole correction goes into the velocity.
-  // "pose_velocity": pose and velocity (12-D error state), so that a pose correction does not
-  //   corrupt the velocity used by the next prediction.
-  std::string state = "pose_velocity";
-  // "exp": M_t = Exp(xi) M_{t-1} (eq. 11); "first_order": M_t = (I + Hat(xi)) M_{t-1} (eq. 12),
-  // re-orthonormalised.
-  std::string integration = "exp";
+  FilterState state = FilterState::kPoseVelocity;
+  Integration integration = Integration::kExp;
 
   // Constant-velocity model (eq. 18): per-frame velocity change ~ N(0, diag(sigma^2)).
   double accel_sigma_m = 2e-3;     // m / frame^2
@@ -35,34 +43,24 @@ struct StereoEkfOptions {
   int max_iterations = 2;
   double iteration_tolerance = 0.1;
 
-  // Validation gate (eq. 20) r^T S^-1 r < g per feature. g is the chi-square quantile of
+  // Validation gate (eq. 20) r^T S^-1 r < g per feature, g the chi-square quantile of
   // gate_probability with as many degrees of freedom as the feature measures residual scalars
-  // (4, or 2 for a line with one transfer degenerate), unless gate_threshold > 0 gives g
-  // directly for every feature (the paper uses g = 0.2 with an unstated scaling of R).
+  // (4, or 2 for a line with one transfer degenerate). (The paper's g = 0.2 presumes an unstated
+  // scaling of R.)
   double gate_probability = 0.999;
-  double gate_threshold = 0.0;
 
   // Measurement-noise scale: the model's covariances R are multiplied by s^2, estimated online
-  // from the posterior residuals of the features in the gate (s^2 <- s^2 (1 - a + a rho), rho
-  // their median cost over its expected value; a fifth of the rate when rho > 1), clamped to
-  // [min_noise_scale, max_noise_scale]^2. The
-  // nominal noise (e.g. endpoint_sigma_px) then only sets the start; noise-free data drive s to
-  // its minimum and the tracker becomes exact.
+  // from the posterior residuals of the features in the gate (stereo_ekf_tracker.cc,
+  // AdaptNoiseScale). The nominal noise (e.g. endpoint_sigma_px) then only sets the start;
+  // noise-free data drive s to its minimum and the tracker becomes exact.
   bool adaptive_noise = true;
-  double noise_adaptation_rate = 0.3;
-  double min_noise_scale = 0.01;
-  double max_noise_scale = 4.0;
 
   // Robustness: a RANSAC over feature pairs seeds the update on the first robust_start_frames
-  // frames after the start (weak velocity prior) and whenever the filter looks unhealthy: fewer
-  // features inside the gate than min_inlier_fraction of the previous frame's, or a posterior
-  // cost per residual scalar above max_normalized_cost (about 1 when the noise model is right).
-  // If the robust solve then finds more inliers than the gate and disagrees with the prediction,
-  // the filter is re-seeded from it.
+  // frames after the start (weak velocity prior) and whenever the filter looks unhealthy
+  // (stereo_ekf_tracker.h). If the robust solve then finds more inliers than the gate and
+  // disagrees with the prediction, the filter is re-seeded from it.
   bool robust = true;
   int robust_start_frames = 3;
-  double min_inlier_fraction = 0.5;
-  double max_normalized_cost = 2.0;
   int ransac_max_iterations = 200;
   double ransac_confidence = 0.999;
   std::uint64_t seed = 1;
@@ -74,24 +72,27 @@ struct StereoEkfOptions {
   // (PoseVelocityFilter::DampVelocity); 1 = coast at constant velocity for ever.
   double lost_velocity_decay = 0.5;
 
-  // Feature replacement (Sec. 3.3): when fewer than min_features (the paper's k_c) features of
-  // the reference remain, or fewer than min_feature_fraction of those the reference started
-  // with, the current pair becomes the new reference.
+  // New reference pair (Sec. 3.3, the paper's feature replacement): when fewer than min_features
+  // (the paper's k_c) features of the reference remain, or fewer than min_feature_fraction of
+  // those the reference started with, the current pair becomes the new reference.
   int min_features = 6;
   double min_feature_fraction = 0.5;
-  // What counts as remaining: "measurable" (matched to the reference and not degenerate) or
-  // "gated" (also inside the validation gate this frame: the paper's reading, where lines
-  // dropped by eq. 20 are not available).
-  std::string count_features = "measurable";
+  FeatureCount count_features = FeatureCount::kMeasurable;
 
   double GateThreshold(int dimension = 4) const;  // the g in use for a feature of `dimension` rows
   // Throws ConfigError "<where>: key '<path>.<field>': ...".
   void Check(const std::string& where = "stereo EKF options", const std::string& path = "") const;
 };
 
-// The paper's filter (Sec. 3.3-4): 6-D velocity state, one EKF update, no RANSAC, no noise
-// adaptation, constant-velocity prediction while nothing is measured (no velocity decay),
-// feature replacement counting the lines that survive the gate (eq. 20).
+// Keys, ranges and docs of every field.
+const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema();
+
+// The robustness policy beyond the paper (stereo_ekf_tracker.h, stages 2 and 4) switched off as
+// a whole: no RANSAC start or re-seeding, no noise adaptation nor widening when lost, and
+// constant-velocity prediction while nothing is measured (no velocity decay).
+void DisableRobustness(StereoEkfOptions* options);
+// The paper's filter (Sec. 3.3-4): 6-D velocity state, one EKF update, no robustness policy,
+// new reference pairs counting the lines that survive the gate (eq. 20).
 void ApplyPaperPreset(StereoEkfOptions* options);
 
 // Reads the fields present in `reader` (keeps defaults for the others).

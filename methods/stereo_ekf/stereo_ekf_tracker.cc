@@ -5,6 +5,22 @@
 #include <cmath>
 
 namespace slt {
+namespace {
+
+// The robustness policy's constants (fixed: no config, preset or ablation varies them).
+// Noise-scale adaptation: s^2 <- s^2 (1 - a + a rho), rho the median posterior cost over its
+// expected value, a = kNoiseAdaptationRate (a fifth of it when rho > 1), s clamped to
+// [kMinNoiseScale, kMaxNoiseScale].
+constexpr double kNoiseAdaptationRate = 0.3;
+constexpr double kMinNoiseScale = 0.01;
+constexpr double kMaxNoiseScale = 4.0;
+// Unhealthy filter: fewer features inside the gate than kMinInlierFraction of the previous
+// frame's, or a posterior cost per residual scalar above kMaxNormalizedCost (about 1 when the
+// noise model is right).
+constexpr double kMinInlierFraction = 0.5;
+constexpr double kMaxNormalizedCost = 2.0;
+
+}  // namespace
 
 StereoEkfTracker::StereoEkfTracker(const StereoEkfOptions& options, std::unique_ptr<FeatureModel> model,
                                    nlohmann::json model_options)
@@ -205,10 +221,10 @@ void StereoEkfTracker::AdaptNoiseScale(int rows) {
   std::nth_element(posterior_costs_.begin(), middle, posterior_costs_.end());
   const double dof_correction = rows / std::max(1.0, rows - 6.0);
   const double ratio = *middle * dof_correction / 3.357;
-  const double a = ratio < 1.0 ? options_.noise_adaptation_rate : 0.2 * options_.noise_adaptation_rate;
+  const double a = ratio < 1.0 ? kNoiseAdaptationRate : 0.2 * kNoiseAdaptationRate;
   noise_scale_sq_ *= (1.0 - a) + a * ratio;
-  const double lo = options_.min_noise_scale * options_.min_noise_scale;
-  const double hi = options_.max_noise_scale * options_.max_noise_scale;
+  const double lo = kMinNoiseScale * kMinNoiseScale;
+  const double hi = kMaxNoiseScale * kMaxNoiseScale;
   noise_scale_sq_ = std::min(hi, std::max(lo, noise_scale_sq_));
 }
 
@@ -219,7 +235,7 @@ int StereoEkfTracker::MeasuredRows() const {
 }
 
 bool StereoEkfTracker::MaybeRebootstrap(const StereoFrame& frame, int used) {
-  const int remaining = options_.count_features == "gated" ? used : static_cast<int>(valid_.size());
+  const int remaining = options_.count_features == FeatureCount::kGated ? used : static_cast<int>(valid_.size());
   const bool too_few = remaining < options_.min_features ||
                        remaining < options_.min_feature_fraction * reference_features_;
   if (!too_few || model_->CurrentStereoFeatures() <= remaining) return false;
@@ -251,7 +267,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
   const int gated = static_cast<int>(inliers_.size());
   const bool weak_prior = frames_since_start_ <= options_.robust_start_frames;
   const bool suspicious =
-      !healthy_ || gated < std::max(2, static_cast<int>(std::ceil(options_.min_inlier_fraction * previous_inliers_)));
+      !healthy_ || gated < std::max(2, static_cast<int>(std::ceil(kMinInlierFraction * previous_inliers_)));
   Rigid3d linearization = predicted;
   bool blocks_at_linearization = true;
   if (options_.robust && valid >= 2 && (weak_prior || suspicious)) {
@@ -260,8 +276,8 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     // A filter that has gone wrong may be far from the truth: also start from the reference
     // pose, where the features were first seen.
     if (!healthy_) starts_.push_back(Rigid3d());
-    robust_solver_.Solve(*model_, features_, valid_, starts_, gate_, options_.ransac_max_iterations,
-                         options_.ransac_confidence, &robust_result_);
+    robust_solver_.Solve(*model_, features_, valid_, starts_, gate_,
+                         {options_.ransac_max_iterations, options_.ransac_confidence}, &robust_result_);
     const int consensus = static_cast<int>(robust_result_.inliers.size());
     const int min_consensus = std::min(valid, options_.min_consensus);
     if (robust_result_.success && consensus >= min_consensus && (weak_prior || consensus > gated)) {
@@ -300,7 +316,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     // features but none passed the gate, the noise model may be too tight for the data: widen it
     // so that the gate can let them in again.
     if (valid >= 2 && options_.adaptive_noise) {
-      noise_scale_sq_ = std::min(noise_scale_sq_ * 4.0, options_.max_noise_scale * options_.max_noise_scale);
+      noise_scale_sq_ = std::min(noise_scale_sq_ * 4.0, kMaxNoiseScale * kMaxNoiseScale);
     }
     healthy_ = false;
     used = 0;
@@ -315,7 +331,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
     const double dof = std::max(1.0, rows - 6.0);
     const double h = 2.0 / (9.0 * dof);
     const double chi2_999 = dof * std::pow(1.0 - h + 3.09 * std::sqrt(h), 3.0);
-    healthy_ = cost <= std::max(options_.max_normalized_cost * dof, chi2_999);
+    healthy_ = cost <= std::max(kMaxNormalizedCost * dof, chi2_999);
     AdaptNoiseScale(rows);
     out.status = TrackingStatus::kTracking;
   }

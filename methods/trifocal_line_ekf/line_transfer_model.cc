@@ -3,70 +3,56 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dataset/association.h"
 #include "geometry/trifocal.h"
 
 namespace slt {
 namespace {
 
-bool ById(const LineObservation& a, const LineObservation& b) { return a.id < b.id; }
+// Segments shorter than this (px) are ignored: their direction is noise.
+constexpr double kMinSegmentLengthPx = 5.0;
+// The floor of a propagated R on the theta rows of the (theta, lambda) residual (rad).
+constexpr double kCovarianceFloorRad = 1e-4;
 
 }  // namespace
 
+const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
+  using O = LineTransferOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>()
+          .Field("direction", &O::direction,
+                 {{TransferDirection::kCurrentToReference, "current_to_reference"},
+                  {TransferDirection::kReferenceToCurrent, "reference_to_current"}},
+                 "transfer direction; current_to_reference is the paper's (eq. 16)")
+          .Field("residual", &O::residual,
+                 {{LineResidual::kEndpointDistance, "endpoint_distance"}, {LineResidual::kThetaLambda, "theta_lambda"}},
+                 "endpoint distances (px) or the paper's (theta, lambda) (eq. 8-9)")
+          .Field("noise", &O::noise, MeasurementNoiseNames(),
+                 "R propagated from the endpoint noise, or the paper's fixed diagonal R")
+          .Field("endpoint_sigma_px", &O::endpoint_sigma_px, Positive(), "endpoint noise per coordinate (px), propagated R")
+          .Field("covariance_floor_px", &O::covariance_floor_px, Positive(), "floor added to a propagated R (px)")
+          .Field("fixed_sigma_px", &O::fixed_sigma_px, Positive(), "fixed R: distances and lambda (px)")
+          .Field("fixed_sigma_rad", &O::fixed_sigma_rad, Positive(), "fixed R: theta (rad)")
+          .Field("min_epipolar_angle_deg", &O::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
+                 "lines this close to the epipolar direction are not measured")
+          .Field("min_plane_angle_deg", &O::min_plane_angle_deg, InRange(0.0, 90.0, "[)"),
+                 "current_to_reference: transfers through planes this close are not measured (Sec. 4)");
+  return schema;
+}
+
 void LineTransferOptions::Check(const std::string& where, const std::string& path) const {
-  auto fail = [&](const std::string& key, const std::string& why) { ThrowOptionError(where, path, key, why); };
-  if (direction != "current_to_reference" && direction != "reference_to_current") {
-    fail("direction", "must be \"current_to_reference\" or \"reference_to_current\"");
-  }
-  if (residual != "endpoint_distance" && residual != "theta_lambda") {
-    fail("residual", "must be \"endpoint_distance\" or \"theta_lambda\"");
-  }
-  if (noise != "propagated" && noise != "fixed") fail("noise", "must be \"propagated\" or \"fixed\"");
-  if (!(endpoint_sigma_px > 0.0)) fail("endpoint_sigma_px", "must be > 0");
-  if (!(covariance_floor_px > 0.0)) fail("covariance_floor_px", "must be > 0");
-  if (!(covariance_floor_rad > 0.0)) fail("covariance_floor_rad", "must be > 0");
-  if (!(fixed_sigma_px > 0.0)) fail("fixed_sigma_px", "must be > 0");
-  if (!(fixed_sigma_rad > 0.0)) fail("fixed_sigma_rad", "must be > 0");
-  if (!(min_epipolar_angle_deg >= 0.0 && min_epipolar_angle_deg < 90.0)) {
-    fail("min_epipolar_angle_deg", "must be in [0, 90)");
-  }
-  if (!(min_plane_angle_deg >= 0.0 && min_plane_angle_deg < 90.0)) fail("min_plane_angle_deg", "must be in [0, 90)");
-  if (!(min_segment_length_px >= 0.0)) fail("min_segment_length_px", "must be >= 0");
+  LineTransferOptionsSchema().Validate(*this, where, path);
 }
 
-void ReadLineTransferOptions(JsonReader& r, LineTransferOptions* o) {
-  r.Get("direction", &o->direction)
-      .Get("residual", &o->residual)
-      .Get("noise", &o->noise)
-      .Get("endpoint_sigma_px", &o->endpoint_sigma_px)
-      .Get("covariance_floor_px", &o->covariance_floor_px)
-      .Get("covariance_floor_rad", &o->covariance_floor_rad)
-      .Get("fixed_sigma_px", &o->fixed_sigma_px)
-      .Get("fixed_sigma_rad", &o->fixed_sigma_rad)
-      .Get("min_epipolar_angle_deg", &o->min_epipolar_angle_deg)
-      .Get("min_plane_angle_deg", &o->min_plane_angle_deg)
-      .Get("min_segment_length_px", &o->min_segment_length_px);
-  o->Check(r.where(), r.path());
-}
+void ReadLineTransferOptions(JsonReader& r, LineTransferOptions* o) { LineTransferOptionsSchema().Read(r, o); }
 
-nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& o) {
-  return {{"direction", o.direction},
-          {"residual", o.residual},
-          {"noise", o.noise},
-          {"endpoint_sigma_px", o.endpoint_sigma_px},
-          {"covariance_floor_px", o.covariance_floor_px},
-          {"covariance_floor_rad", o.covariance_floor_rad},
-          {"fixed_sigma_px", o.fixed_sigma_px},
-          {"fixed_sigma_rad", o.fixed_sigma_rad},
-          {"min_epipolar_angle_deg", o.min_epipolar_angle_deg},
-          {"min_plane_angle_deg", o.min_plane_angle_deg},
-          {"min_segment_length_px", o.min_segment_length_px}};
-}
+nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& o) { return LineTransferOptionsSchema().ToJson(o); }
 
 LineTransferModel::LineTransferModel(const LineTransferOptions& options) : options_(options) {
   options_.Check();
-  paper_direction_ = options_.direction == "current_to_reference";
-  distance_residual_ = options_.residual == "endpoint_distance";
-  propagated_noise_ = options_.noise == "propagated";
+  paper_direction_ = options_.direction == TransferDirection::kCurrentToReference;
+  distance_residual_ = options_.residual == LineResidual::kEndpointDistance;
+  propagated_noise_ = options_.noise == MeasurementNoise::kPropagated;
   min_epipolar_sine_ = std::sin(options_.min_epipolar_angle_deg * M_PI / 180.0);
   min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
   // Residual units per scalar: [px, px, px, px] or [rad, px, rad, px].
@@ -76,8 +62,7 @@ LineTransferModel::LineTransferModel(const LineTransferOptions& options) : optio
     floor.setConstant(options_.covariance_floor_px);
   } else {
     fixed_sigma << options_.fixed_sigma_rad, options_.fixed_sigma_px, options_.fixed_sigma_rad, options_.fixed_sigma_px;
-    floor << options_.covariance_floor_rad, options_.covariance_floor_px, options_.covariance_floor_rad,
-        options_.covariance_floor_px;
+    floor << kCovarianceFloorRad, options_.covariance_floor_px, kCovarianceFloorRad, options_.covariance_floor_px;
   }
   fixed_covariance_ = fixed_sigma.array().square().matrix().asDiagonal();
   covariance_floor_ = floor.array().square();
@@ -110,7 +95,7 @@ void LineTransferModel::Reset(const StereoRig& rig) {
 bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamera& camera,
                                     ObservedSegment* out) const {
   if (!segment.allFinite() ||
-      (segment.tail<2>() - segment.head<2>()).norm() < std::max(options_.min_segment_length_px, 1e-9)) {
+      (segment.tail<2>() - segment.head<2>()).norm() < kMinSegmentLengthPx) {
     return false;
   }
   Eigen::Matrix<double, 3, 4> d_pixel_line;
@@ -126,15 +111,6 @@ bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamer
   // exact here: every residual is invariant to the positive scale of its input lines.
   out->line_d_segment = (kt * d_pixel_line) * inv_norm;
   return true;
-}
-
-const std::vector<LineObservation>& LineTransferModel::SortedById(const std::vector<LineObservation>& observations,
-                                                                  std::vector<LineObservation>* scratch) {
-  // Files and the simulator usually list lines by id already: only copy and sort otherwise.
-  if (std::is_sorted(observations.begin(), observations.end(), ById)) return observations;
-  scratch->assign(observations.begin(), observations.end());
-  std::sort(scratch->begin(), scratch->end(), ById);
-  return *scratch;
 }
 
 int LineTransferModel::CountUsable(const std::vector<StereoLine>& lines) {
@@ -156,24 +132,14 @@ void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector
   const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
   const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
   out->clear();
-  auto l = left.begin();
-  auto r = right.begin();
-  while (l != left.end() && r != right.end()) {
-    if (l->id < r->id) {
-      ++l;
-    } else if (r->id < l->id) {
-      ++r;
-    } else {
-      StereoLine line;
-      line.id = l->id;
-      if (MakeSegment(l->segment, rig_.left, &line.left) && MakeSegment(r->segment, rig_.right, &line.right)) {
-        line.degenerate = NearEpipolar(line.left);
-        out->push_back(line);
-      }
-      ++l;
-      ++r;
+  JoinById(left, right, [&](size_t l, size_t r) {
+    StereoLine line;
+    line.id = left[l].id;
+    if (MakeSegment(left[l].segment, rig_.left, &line.left) && MakeSegment(right[r].segment, rig_.right, &line.right)) {
+      line.degenerate = NearEpipolar(line.left);
+      out->push_back(line);
     }
-  }
+  });
 }
 
 int LineTransferModel::SetReference(const StereoFrame& frame) {
@@ -195,18 +161,9 @@ int LineTransferModel::SetCurrent(const StereoFrame& frame) {
   CollectStereoLines(frame, &current_);
   current_stereo_ = CountUsable(current_);
   matches_.clear();
-  size_t i = 0, j = 0;
-  while (i < reference_.size() && j < current_.size()) {
-    if (reference_[i].id < current_[j].id) {
-      ++i;
-    } else if (current_[j].id < reference_[i].id) {
-      ++j;
-    } else {
-      matches_.push_back({reference_[i].id, static_cast<int>(i), static_cast<int>(j)});
-      ++i;
-      ++j;
-    }
-  }
+  JoinById(reference_, current_, [&](size_t i, size_t j) {
+    matches_.push_back({reference_[i].id, static_cast<int>(i), static_cast<int>(j)});
+  });
   return static_cast<int>(matches_.size());
 }
 

@@ -29,21 +29,27 @@
 #include <vector>
 
 #include "common/json_reader.h"
+#include "common/options.h"
 #include "geometry/plucker.h"
 #include "methods/stereo_ekf/feature_model.h"
 
 namespace slt {
 
+enum class TransferDirection { kCurrentToReference, kReferenceToCurrent };
+enum class LineResidual { kEndpointDistance, kThetaLambda };
+
+// Every field's JSON key, range and one-line doc are declared once, in LineTransferOptionsSchema()
+// (line_transfer_model.cc); the comments here say why a field exists.
 struct LineTransferOptions {
-  std::string direction = "reference_to_current";  // or "current_to_reference" (the paper's)
-  std::string residual = "endpoint_distance";      // or "theta_lambda"
-  std::string noise = "propagated";                // or "fixed"
+  TransferDirection direction = TransferDirection::kReferenceToCurrent;  // the paper's: kCurrentToReference
+  LineResidual residual = LineResidual::kEndpointDistance;
+  MeasurementNoise noise = MeasurementNoise::kPropagated;
   // Standard deviation of each endpoint coordinate (uniform +-n px has sigma = n / sqrt(3)).
   double endpoint_sigma_px = 1.5;
-  // Added to the diagonal of a propagated R: just after a new reference (M ~ I) the two
-  // transfers return the same line and R is nearly singular.
+  // Added to the diagonal of a propagated R: just after a new reference pair (M ~ I) the two
+  // transfers return the same line and R is nearly singular. (The theta rows of the
+  // (theta, lambda) residual get kCovarianceFloorRad.)
   double covariance_floor_px = 0.05;
-  double covariance_floor_rad = 1e-4;
   // Fixed R: per residual scalar. fixed_sigma_px serves lambda and the endpoint distances;
   // fixed_sigma_rad, theta. The paper preset sets the spread measured for its (theta, lambda)
   // residual at +-2.5 px (0.012 rad, 1.9 px; trifocal_line_ekf.cc); the endpoint distances
@@ -57,16 +63,15 @@ struct LineTransferOptions {
   // direction, whose transfers start from it. An image criterion, unlike the angle between the
   // back-projected planes, does not also reject distant lines.
   double min_epipolar_angle_deg = 3.0;
-  // Direction "current_to_reference" only: features whose transfer intersects two planes at
-  // less than this angle are not measured either (lines near the trifocal plane of the views a
+  // Direction kCurrentToReference only: features whose transfer intersects two planes at less
+  // than this angle are not measured either (lines near the trifocal plane of the views a
   // transfer uses, Sec. 4; this also rejects distant lines). 0 = off; the paper preset uses 3.
   double min_plane_angle_deg = 0.0;
-  // Segments shorter than this (px) are ignored.
-  double min_segment_length_px = 5.0;
 
   void Check(const std::string& where = "line transfer options", const std::string& path = "") const;
 };
 
+const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema();
 void ReadLineTransferOptions(JsonReader& reader, LineTransferOptions* options);
 nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& options);
 
@@ -113,9 +118,6 @@ class LineTransferModel final : public FeatureModel {
     int current;    // index into current_
   };
 
-  // `observations` if sorted by id, else a sorted copy in *scratch.
-  static const std::vector<LineObservation>& SortedById(const std::vector<LineObservation>& observations,
-                                                        std::vector<LineObservation>* scratch);
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;

@@ -6,45 +6,10 @@
 
 #include "geometry/numeric_jacobian.h"
 #include "geometry/se3.h"
+#include "methods/stereo_ekf/tiny_scene.h"
 
 namespace slt {
 namespace {
-
-// A few 3-D lines in front of a default rig, projected into a stereo frame.
-struct TinyScene {
-  StereoRig rig;
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lines = {
-      {{-0.10, 0.05, 0.50}, {0.12, -0.06, 0.62}},
-      {{0.05, -0.12, 0.45}, {0.02, 0.14, 0.55}},
-      {{-0.15, -0.10, 0.70}, {-0.05, 0.10, 0.40}},
-      {{0.10, 0.10, 0.60}, {0.16, -0.12, 0.52}},
-  };
-
-  StereoFrame Frame(const Rigid3d& cam_from_ref) const {
-    StereoFrame f;
-    const Rigid3d right_from_ref = rig.right_from_left * cam_from_ref;
-    for (size_t i = 0; i < lines.size(); ++i) {
-      const auto& [p, q] = lines[i];
-      Segment2d l, r;
-      l << rig.left.Project(cam_from_ref * p), rig.left.Project(cam_from_ref * q);
-      r << rig.right.Project(right_from_ref * p), rig.right.Project(right_from_ref * q);
-      f.left.push_back({static_cast<std::int64_t>(10 + 3 * i), l});
-      f.right.push_back({static_cast<std::int64_t>(10 + 3 * i), r});
-    }
-    return f;
-  }
-};
-
-Rigid3d SomeMotion() {
-  Vector6d xi;
-  xi << 0.02, -0.01, 0.015, 0.01, -0.02, 0.015;
-  return ExpSE3(xi);
-}
-
-// A pose near `truth` where a feature's residual and Jacobian are checked away from the truth.
-Rigid3d NearTruth(const Rigid3d& truth) {
-  return ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
-}
 
 // Central differences of feature `feature`'s residual under at <- Exp(d) at.
 Eigen::Matrix<double, 4, 6> NumericPoseJacobian(const LineTransferModel& model, int feature, const Rigid3d& at) {
@@ -56,10 +21,12 @@ Eigen::Matrix<double, 4, 6> NumericPoseJacobian(const LineTransferModel& model, 
   return CentralDifferenceJacobian<4, 6>(f, Vector6d::Zero());
 }
 
-LineTransferOptions Options(const std::string& direction, const std::string& residual) {
+// The options with these modes (their JSON names), no epipolar gate.
+LineTransferOptions Options(const std::string& direction, const std::string& residual,
+                            const std::string& noise = "propagated") {
   LineTransferOptions o;
-  o.direction = direction;
-  o.residual = residual;
+  JsonReader reader(nlohmann::json{{"direction", direction}, {"residual", residual}, {"noise", noise}}, "test");
+  ReadLineTransferOptions(reader, &o);
   o.min_epipolar_angle_deg = 0.0;
   return o;
 }
@@ -125,8 +92,7 @@ TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
   Eigen::Matrix4d expected = 1.3 * 1.3 * N * N.transpose();
   const bool distance = residual == "endpoint_distance";
   const Eigen::Vector4d floor = distance ? Eigen::Vector4d::Constant(0.05)
-                                         : Eigen::Vector4d(options.covariance_floor_rad, 0.05,
-                                                           options.covariance_floor_rad, 0.05);
+                                         : Eigen::Vector4d(1e-4, 0.05, 1e-4, 0.05);
   expected.diagonal() += floor.array().square().matrix();
   EXPECT_LT((expected - block.covariance).norm(), 1e-6 * expected.norm());
 }
@@ -213,8 +179,7 @@ TEST_P(OneTransferDegenerate, CurrentLeftCameraAtTheReferenceRightCamera) {
   // T over (I_1, I'_1, I_t) then has two views with the same centre: every line lies in an
   // epipolar plane of them and T degenerates for all; T' (rows 2-3) still measures each line.
   TinyScene scene;
-  LineTransferOptions options = Options("current_to_reference", "theta_lambda");
-  options.noise = GetParam();
+  LineTransferOptions options = Options("current_to_reference", "theta_lambda", GetParam());
   options.min_plane_angle_deg = 3.0;
   LineTransferModel model(options);
   model.Reset(scene.rig);
@@ -235,8 +200,7 @@ TEST_P(OneTransferDegenerate, LineHorizontalInTheCurrentPairOnly) {
   const Rigid3d ref_from_cam = truth.Inverse();
   TinyScene scene;
   scene.lines = {{ref_from_cam * Eigen::Vector3d(-0.1, 0.03, 0.5), ref_from_cam * Eigen::Vector3d(0.1, 0.03, 0.5)}};
-  LineTransferOptions options = Options("current_to_reference", "theta_lambda");
-  options.noise = GetParam();
+  LineTransferOptions options = Options("current_to_reference", "theta_lambda", GetParam());
   options.min_epipolar_angle_deg = 3.0;
   options.min_plane_angle_deg = 3.0;
   LineTransferModel model(options);

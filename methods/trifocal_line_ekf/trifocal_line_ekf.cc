@@ -13,8 +13,8 @@ std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::strin
         // The paper's measurement: current lines transferred into the reference view (eq. 16),
         // compared in (theta, lambda) (eq. 8-9) with a fixed R; lines near the trifocal plane
         // excluded (Sec. 4).
-        m->residual = "theta_lambda";
-        m->noise = "fixed";
+        m->residual = LineResidual::kThetaLambda;
+        m->noise = MeasurementNoise::kFixed;
         // The paper does not state R's values ("the covariance of the measurement noise").
         // These are the robust spread (1.4826 x median absolute value) of each residual at the
         // true pose under the paper protocol's +-2.5 px noise: 0.0117 rad and 1.89 px over 40
@@ -23,7 +23,7 @@ std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::strin
         // over 1 200 trials (results/faithful_fixed_r).
         m->fixed_sigma_rad = 0.012;
         m->fixed_sigma_px = 1.9;
-        m->direction = "current_to_reference";
+        m->direction = TransferDirection::kCurrentToReference;
         m->min_plane_angle_deg = 3.0;
       },
       ReadLineTransferOptions, LineTransferOptionsToJson,
@@ -33,11 +33,7 @@ std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::strin
 }  // namespace
 
 TrackerInfo TrifocalLineEkfInfo() {
-  TrackerInfo info;
-  info.name = "trifocal_line_ekf";
-  info.description = "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)";
-  info.create = Create;
-  return info;
+  return {"trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)", Create};
 }
 
 }  // namespace slt

@@ -4,14 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "dataset/association.h"
 #include "geometry/line2d.h"
 #include "geometry/se3.h"
 #include "geometry/trifocal.h"
 
 namespace slt {
 namespace {
-
-bool ById(const LineObservation& a, const LineObservation& b) { return a.id < b.id; }
 
 // Pixel projection of a point given in the camera's frame, with d pixel / d point.
 inline Eigen::Vector2d ProjectToPixel(const PinholeCamera& camera, const Eigen::Vector3d& p,
@@ -23,49 +22,39 @@ inline Eigen::Vector2d ProjectToPixel(const PinholeCamera& camera, const Eigen::
   return {camera.fx * x + camera.cx, camera.fy * y + camera.cy};
 }
 
+// Segments shorter than this (px) are ignored (their endpoint order is not defined).
+constexpr double kMinSegmentLengthPx = 5.0;
+// Stereo endpoint pairing: below this difference (px) between the epipolar distances of the two
+// pairings, the segments' directions decide.
+constexpr double kPairingAmbiguityPx = 1.0;
+
 }  // namespace
 
+const OptionSchema<PointTransferOptions>& PointTransferOptionsSchema() {
+  using O = PointTransferOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>()
+          .Field("noise", &O::noise, MeasurementNoiseNames(),
+                 "R propagated from the endpoint noise, or the paper's fixed sigma^2 I")
+          .Field("endpoint_sigma_px", &O::endpoint_sigma_px, Positive(), "endpoint noise per coordinate (px), propagated R")
+          .Field("covariance_floor_px", &O::covariance_floor_px, Positive(), "floor added to a propagated R (px)")
+          .Field("fixed_sigma_px", &O::fixed_sigma_px, Positive(), "fixed R per residual scalar (px)")
+          .Field("min_depth_m", &O::min_depth_m, Positive(), "points nearer to a camera are not measured (m)")
+          .Field("min_ray_plane_angle_deg", &O::min_ray_plane_angle_deg, InRange(0.0, 90.0, "[)"),
+                 "reference points whose ray meets the transfer plane at less are not used")
+          .Field("endpoint_pairing", &O::endpoint_pairing,
+                 {{EndpointPairing::kGeometric, "geometric"}, {EndpointPairing::kGiven, "given"}},
+                 "pair endpoints by epipolar and direction rules, or trust the observed order");
+  return schema;
+}
+
 void PointTransferOptions::Check(const std::string& where, const std::string& path) const {
-  auto fail = [&](const std::string& key, const std::string& why) { ThrowOptionError(where, path, key, why); };
-  if (noise != "propagated" && noise != "fixed") fail("noise", "must be \"propagated\" or \"fixed\"");
-  if (!(endpoint_sigma_px > 0.0)) fail("endpoint_sigma_px", "must be > 0");
-  if (!(covariance_floor_px > 0.0)) fail("covariance_floor_px", "must be > 0");
-  if (!(fixed_sigma_px > 0.0)) fail("fixed_sigma_px", "must be > 0");
-  if (!(min_depth_m > 0.0)) fail("min_depth_m", "must be > 0");
-  if (!(min_ray_plane_angle_deg >= 0.0 && min_ray_plane_angle_deg < 90.0)) {
-    fail("min_ray_plane_angle_deg", "must be in [0, 90)");
-  }
-  if (endpoint_pairing != "geometric" && endpoint_pairing != "given") {
-    fail("endpoint_pairing", "must be \"geometric\" or \"given\"");
-  }
-  if (!(pairing_ambiguity_px >= 0.0)) fail("pairing_ambiguity_px", "must be >= 0");
-  if (!(min_segment_length_px >= 0.0)) fail("min_segment_length_px", "must be >= 0");
+  PointTransferOptionsSchema().Validate(*this, where, path);
 }
 
-void ReadPointTransferOptions(JsonReader& r, PointTransferOptions* o) {
-  r.Get("noise", &o->noise)
-      .Get("endpoint_sigma_px", &o->endpoint_sigma_px)
-      .Get("covariance_floor_px", &o->covariance_floor_px)
-      .Get("fixed_sigma_px", &o->fixed_sigma_px)
-      .Get("min_depth_m", &o->min_depth_m)
-      .Get("min_ray_plane_angle_deg", &o->min_ray_plane_angle_deg)
-      .Get("endpoint_pairing", &o->endpoint_pairing)
-      .Get("pairing_ambiguity_px", &o->pairing_ambiguity_px)
-      .Get("min_segment_length_px", &o->min_segment_length_px);
-  o->Check(r.where(), r.path());
-}
+void ReadPointTransferOptions(JsonReader& r, PointTransferOptions* o) { PointTransferOptionsSchema().Read(r, o); }
 
-nlohmann::json PointTransferOptionsToJson(const PointTransferOptions& o) {
-  return {{"noise", o.noise},
-          {"endpoint_sigma_px", o.endpoint_sigma_px},
-          {"covariance_floor_px", o.covariance_floor_px},
-          {"fixed_sigma_px", o.fixed_sigma_px},
-          {"min_depth_m", o.min_depth_m},
-          {"min_ray_plane_angle_deg", o.min_ray_plane_angle_deg},
-          {"endpoint_pairing", o.endpoint_pairing},
-          {"pairing_ambiguity_px", o.pairing_ambiguity_px},
-          {"min_segment_length_px", o.min_segment_length_px}};
-}
+nlohmann::json PointTransferOptionsToJson(const PointTransferOptions& o) { return PointTransferOptionsSchema().ToJson(o); }
 
 // ---------------------------------------------------------------------------------------------
 // StereoPointGeometry
@@ -159,8 +148,8 @@ bool TemporalEndpointsSwapped(const Segment2d& reference, const Segment2d& curre
 
 PointTransferModel::PointTransferModel(const PointTransferOptions& options) : options_(options) {
   options_.Check();
-  propagated_noise_ = options_.noise == "propagated";
-  geometric_pairing_ = options_.endpoint_pairing == "geometric";
+  propagated_noise_ = options_.noise == MeasurementNoise::kPropagated;
+  geometric_pairing_ = options_.endpoint_pairing == EndpointPairing::kGeometric;
   min_ray_plane_sine_ = std::sin(options_.min_ray_plane_angle_deg * M_PI / 180.0);
 }
 
@@ -181,37 +170,25 @@ bool PointTransferModel::Usable(const ReferencePoint& point) const {
 }
 
 void PointTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLinePoints>* out) {
-  left_sorted_.assign(frame.left.begin(), frame.left.end());
-  right_sorted_.assign(frame.right.begin(), frame.right.end());
-  std::sort(left_sorted_.begin(), left_sorted_.end(), ById);
-  std::sort(right_sorted_.begin(), right_sorted_.end(), ById);
-  const double min_length = std::max(options_.min_segment_length_px, 1e-9);
+  const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
+  const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
+  const double min_length = kMinSegmentLengthPx;
   const auto usable = [&](const Segment2d& s) {
     return s.allFinite() && (s.tail<2>() - s.head<2>()).norm() >= min_length;
   };
   out->clear();
-  auto l = left_sorted_.begin();
-  auto r = right_sorted_.begin();
-  while (l != left_sorted_.end() && r != right_sorted_.end()) {
-    if (l->id < r->id) {
-      ++l;
-    } else if (r->id < l->id) {
-      ++r;
-    } else {
-      if (usable(l->segment) && usable(r->segment)) {
-        StereoLinePoints line;
-        line.id = l->id;
-        line.left_segment = l->segment;
-        line.left = {l->segment.head<2>(), l->segment.tail<2>()};
-        const bool swap =
-            geometric_pairing_ && StereoEndpointsSwapped(geometry_, l->segment, r->segment, options_.pairing_ambiguity_px);
-        line.right = {r->segment.segment<2>(swap ? 2 : 0), r->segment.segment<2>(swap ? 0 : 2)};
-        out->push_back(line);
-      }
-      ++l;
-      ++r;
-    }
-  }
+  JoinById(left, right, [&](size_t i, size_t j) {
+    const Segment2d& l = left[i].segment;
+    const Segment2d& r = right[j].segment;
+    if (!usable(l) || !usable(r)) return;
+    StereoLinePoints line;
+    line.id = left[i].id;
+    line.left_segment = l;
+    line.left = {l.head<2>(), l.tail<2>()};
+    const bool swap = geometric_pairing_ && StereoEndpointsSwapped(geometry_, l, r, kPairingAmbiguityPx);
+    line.right = {r.segment<2>(swap ? 2 : 0), r.segment<2>(swap ? 0 : 2)};
+    out->push_back(line);
+  });
 }
 
 int PointTransferModel::SetReference(const StereoFrame& frame) {
@@ -242,24 +219,15 @@ int PointTransferModel::SetCurrent(const StereoFrame& frame) {
     }
   }
   matches_.clear();
-  size_t i = 0, j = 0;
-  while (i < reference_.size() && j < current_.size()) {
-    if (reference_[i].id < current_[j].id) {
-      ++i;
-    } else if (current_[j].id < reference_[i].id) {
-      ++j;
-    } else {
-      const bool swap =
-          geometric_pairing_ && TemporalEndpointsSwapped(reference_[i].left_segment, current_[j].left_segment);
-      for (int k = 0; k < 2; ++k) {
-        const int point = static_cast<int>(2 * i) + k;
-        if (!reference_usable_[point]) continue;
-        matches_.push_back({reference_[i].id, k, point, static_cast<int>(j), swap ? 1 - k : k});
-      }
-      ++i;
-      ++j;
+  JoinById(reference_, current_, [&](size_t i, size_t j) {
+    const bool swap =
+        geometric_pairing_ && TemporalEndpointsSwapped(reference_[i].left_segment, current_[j].left_segment);
+    for (int k = 0; k < 2; ++k) {
+      const int point = static_cast<int>(2 * i) + k;
+      if (!reference_usable_[point]) continue;
+      matches_.push_back({reference_[i].id, k, point, static_cast<int>(j), swap ? 1 - k : k});
     }
-  }
+  });
   return static_cast<int>(matches_.size());
 }
 

@@ -10,7 +10,8 @@
 //   T''  over (I_1, I'_1, I'_t):  y'_hat^k = x^i l'_j T''_i^{jk}    (P1 = [I|0], A = E, B = E M)
 //   residual r = [y - y_hat; y' - y'_hat]  (pixels, 4 scalars)
 //
-// (The epipolar line itself makes the transfer vanish; NOTES.md.) Plane form, used here: the
+// (Not the epipolar line itself: its plane E^T l' contains the ray of x, which it then does
+// not cut, and the transfer vanishes.) Plane form, used here: the
 // tensor contracted with x and l' is the image in view 3 of the point where the ray of x meets
 // the plane pi' = E^T l' back-projected from l',
 //   X = IntersectRayWithPlane(x, E^T l')          (reference left camera frame),
@@ -38,7 +39,7 @@
 //   Stereo (within a frame): the pairing (a <-> a', b <-> b') or (a <-> b', b <-> a') whose
 //     summed distance of the right endpoints to the epipolar lines of their left partners is
 //     smaller (for the default rectified rig, the smaller |dv|); when the two sums differ by
-//     less than pairing_ambiguity_px (a segment along the epipolar lines, where the rule is
+//     less than 1 px (kPairingAmbiguityPx; a segment along the epipolar lines, where the rule is
 //     decided by noise), the pairing that keeps the two segments' directions agreeing. On the
 //     paper protocol (20 seeds, 79 922 stereo lines) this mis-pairs 6 lines noise-free and 124
 //     at +-2.5 px; the epipolar distances alone 0 and 191, the directions alone 353 and 345
@@ -51,7 +52,7 @@
 //     The current right endpoints follow their stereo partners. On the paper protocol the
 //     direction rule mis-pairs 0.13 % of the (line, frame) pairs against frame 0 (foreshortened
 //     segments turning through more than 90 deg in the image); the gate drops them.
-//   endpoint_pairing "given" skips both rules and trusts the observed order (the simulator's,
+//   endpoint_pairing "given" (kGiven) skips both rules and trusts the observed order (the simulator's,
 //   or a detector that orients segments by their gradient's sign, paper Sec. 3.1).
 // A reference point is usable when X is at least min_depth_m in front of the reference camera
 // and the ray of x meets the plane of l' at min_ray_plane_angle_deg or more (a far point or a
@@ -68,12 +69,17 @@
 #include <vector>
 
 #include "common/json_reader.h"
+#include "common/options.h"
 #include "methods/stereo_ekf/feature_model.h"
 
 namespace slt {
 
+enum class EndpointPairing { kGeometric, kGiven };
+
+// Every field's JSON key, range and one-line doc are declared once, in PointTransferOptionsSchema()
+// (point_transfer_model.cc); the comments here say why a field exists.
 struct PointTransferOptions {
-  std::string noise = "propagated";  // or "fixed" (the paper's)
+  MeasurementNoise noise = MeasurementNoise::kPropagated;  // the paper's: kFixed
   // Standard deviation of each endpoint coordinate (uniform +-n px has sigma = n / sqrt(3)).
   double endpoint_sigma_px = 1.5;
   // Added (squared) to the diagonal of a propagated R.
@@ -86,19 +92,15 @@ struct PointTransferOptions {
   // (about the parallax of the point; 0.25 deg is a disparity of 3.7 px at f = 848.7 px,
   // 23 m away on a 0.1 m baseline).
   double min_ray_plane_angle_deg = 0.25;
-  // "geometric": endpoints paired by the rules above (any detector); "given": endpoint k of a
+  // kGeometric: endpoints paired by the rules above (any detector); kGiven: endpoint k of a
   // segment is endpoint k in every image and frame (the simulator's order, or a detector that
   // orients segments by their gradient's sign, as the paper's does in Sec. 3.1).
-  std::string endpoint_pairing = "geometric";
-  // Stereo endpoint pairing: below this difference (px) between the epipolar distances of the
-  // two pairings, the segments' directions decide.
-  double pairing_ambiguity_px = 1.0;
-  // Segments shorter than this (px) are ignored (their endpoint order is not defined).
-  double min_segment_length_px = 5.0;
+  EndpointPairing endpoint_pairing = EndpointPairing::kGeometric;
 
   void Check(const std::string& where = "point transfer options", const std::string& path = "") const;
 };
 
+const OptionSchema<PointTransferOptions>& PointTransferOptionsSchema();
 void ReadPointTransferOptions(JsonReader& reader, PointTransferOptions* options);
 nlohmann::json PointTransferOptionsToJson(const PointTransferOptions& options);
 

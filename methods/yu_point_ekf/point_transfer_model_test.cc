@@ -5,7 +5,9 @@
 #include "geometry/numeric_jacobian.h"
 #include "geometry/se3.h"
 #include "geometry/trifocal.h"
+#include "methods/stereo_ekf/tiny_scene.h"
 #include "methods/yu_point_ekf/yu_point_ekf.h"
+#include "common/json_changes.h"
 
 namespace slt {
 namespace {
@@ -21,42 +23,6 @@ StereoRig Rig(bool general) {
   rig.right.cy = 228.0;
   rig.right_from_left = Rigid3d(ExpSO3(Eigen::Vector3d(0.03, -0.05, 0.04)), Eigen::Vector3d(-0.1, 0.012, 0.006));
   return rig;
-}
-
-// A few 3-D segments in front of a rig, projected into a stereo frame (endpoints in the same
-// order in both images, as the simulator writes them).
-struct TinyScene {
-  StereoRig rig;
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lines = {
-      {{-0.10, 0.05, 0.50}, {0.12, -0.06, 0.62}},
-      {{0.05, -0.12, 0.45}, {0.02, 0.14, 0.55}},
-      {{-0.15, -0.10, 0.70}, {-0.05, 0.10, 0.40}},
-      {{0.10, 0.10, 0.60}, {0.16, -0.12, 0.52}},
-  };
-
-  StereoFrame Frame(const Rigid3d& cam_from_ref) const {
-    StereoFrame f;
-    const Rigid3d right_from_ref = rig.right_from_left * cam_from_ref;
-    for (size_t i = 0; i < lines.size(); ++i) {
-      const auto& [p, q] = lines[i];
-      Segment2d l, r;
-      l << rig.left.Project(cam_from_ref * p), rig.left.Project(cam_from_ref * q);
-      r << rig.right.Project(right_from_ref * p), rig.right.Project(right_from_ref * q);
-      f.left.push_back({static_cast<std::int64_t>(10 + 3 * i), l});
-      f.right.push_back({static_cast<std::int64_t>(10 + 3 * i), r});
-    }
-    return f;
-  }
-};
-
-Rigid3d SomeMotion() {
-  Vector6d xi;
-  xi << 0.02, -0.01, 0.015, 0.01, -0.02, 0.015;
-  return ExpSE3(xi);
-}
-
-Rigid3d AwayFrom(const Rigid3d& pose) {
-  return ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * pose;
 }
 
 Segment2d Reversed(const Segment2d& s) { return (Segment2d() << s.tail<2>(), s.head<2>()).finished(); }
@@ -82,7 +48,7 @@ TEST_P(PointTransferModelTest, ZeroResidualAtTruthAndJacobianMatches) {
     FeatureBlock block;
     ASSERT_TRUE(model.Evaluate(i, truth, true, &block));
     EXPECT_LT(block.residual.norm(), 1e-9) << "feature " << i;
-    for (const Rigid3d& at : {truth, AwayFrom(truth)}) {
+    for (const Rigid3d& at : {truth, NearTruth(truth)}) {
       ASSERT_TRUE(model.Evaluate(i, at, false, &block));
       const auto f = [&](const Vector6d& d) -> Eigen::Vector4d {
         FeatureBlock b;
@@ -95,7 +61,7 @@ TEST_P(PointTransferModelTest, ZeroResidualAtTruthAndJacobianMatches) {
   }
   // Away from the truth the residual is not zero (the test above can fail).
   FeatureBlock block;
-  ASSERT_TRUE(model.Evaluate(0, AwayFrom(truth), false, &block));
+  ASSERT_TRUE(model.Evaluate(0, NearTruth(truth), false, &block));
   EXPECT_GT(block.residual.norm(), 0.5);
 }
 
@@ -108,7 +74,7 @@ TEST_P(PointTransferModelTest, PlaneFormEqualsTensorPointTransfer) {
   const StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(truth);
   model.SetReference(ref);
   model.SetCurrent(cur);
-  const Rigid3d at = AwayFrom(truth);  // any pose: the transfer is an identity in M
+  const Rigid3d at = NearTruth(truth);  // any pose: the transfer is an identity in M
   const Matrix34d E = rig.right_from_left.ToMatrix3x4();
   const TrifocalTensor into_left = TrifocalTensorFromCameras(E, at.ToMatrix3x4());
   const TrifocalTensor into_right = TrifocalTensorFromCameras(E, (rig.right_from_left * at).ToMatrix3x4());
@@ -125,7 +91,7 @@ TEST_P(PointTransferModelTest, PlaneFormEqualsTensorPointTransfer) {
     const Eigen::Vector3d line2 =
         k_right.transpose() * PerpendicularLineThroughPoint(k_right.inverse().transpose() * epipolar, x2);
     EXPECT_LT(line2.normalized().cross(model.geometry().TransferLine(x, x2).normalized()).norm(), 1e-9);
-    // The epipolar line itself transfers nothing (NOTES.md).
+    // The epipolar line itself transfers nothing: its plane contains the ray of x.
     EXPECT_LT(TransferPoint(into_left, xn, epipolar.normalized()).norm(), 1e-12);
 
     const Eigen::Vector3d yl = k_left * TransferPoint(into_left, xn, line2);
@@ -152,7 +118,7 @@ TEST_P(PointTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) 
   ref.left[1].segment += Segment2d(0.8, -1.1, 1.4, 0.6);
   ref.right[1].segment += Segment2d(-1.5, 2.0, 1.2, -1.7);
   ref.right[2].segment += Segment2d(1.0, 1.8, -2.2, 1.3);
-  const Rigid3d at = AwayFrom(truth);
+  const Rigid3d at = NearTruth(truth);
   for (const int feature : {2, 5}) {
     const int line = feature / 2, k = feature % 2;
     PointTransferModel model(options);
@@ -218,7 +184,7 @@ TEST_P(PointTransferModelTest, EndpointOrderDoesNotMatter) {
   // With endpoint_pairing "given" the observed order is trusted: a line whose current left
   // segment is reversed no longer fits the truth, the others still do.
   PointTransferOptions given;
-  given.endpoint_pairing = "given";
+  given.endpoint_pairing = EndpointPairing::kGiven;
   PointTransferModel trusting(given);
   trusting.Reset(scene.rig);
   StereoFrame cur_one_reversed = scene.Frame(truth);
@@ -305,7 +271,7 @@ TEST(PointTransferModel, DegeneratePointsAreNotFeatures) {
 TEST(PointTransferModel, FixedNoiseIsDiagonal) {
   TinyScene scene;
   PointTransferOptions o;
-  o.noise = "fixed";
+  o.noise = MeasurementNoise::kFixed;
   o.fixed_sigma_px = 1.7;
   PointTransferModel model(o);
   model.Reset(scene.rig);
@@ -331,18 +297,9 @@ TEST(PointTransferModel, SkipsMonocularAndShortSegments) {
   EXPECT_EQ(model.FeatureId(3), 19);
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(PointTransferModel, OptionErrorsNameTheKey) {
   const auto read = [](const char* text) {
-    return ErrorOf([&] {
+    return ConfigErrorOf([&] {
       const auto j = nlohmann::json::parse(text);
       JsonReader r(j, "cfg.json", "measurement");
       PointTransferOptions o;
@@ -355,15 +312,15 @@ TEST(PointTransferModel, OptionErrorsNameTheKey) {
   EXPECT_NE(read(R"({"min_ray_plane_angle_deg": 90})").find("key 'measurement.min_ray_plane_angle_deg'"),
             std::string::npos);
   EXPECT_NE(read(R"({"endpoint_sigma_px": "1"})").find("key 'measurement.endpoint_sigma_px'"), std::string::npos);
-  EXPECT_EQ(read(R"({"noise": "fixed", "fixed_sigma_px": 1.0})"), "no error");
+  EXPECT_EQ(read(R"({"noise": "fixed", "fixed_sigma_px": 1.0})"), "");
 
   const auto create = [](const char* text) {
-    return ErrorOf([&] { YuPointEkfInfo().create(nlohmann::json::parse(text), "cfg.json"); });
+    return ConfigErrorOf([&] { YuPointEkfInfo().create(nlohmann::json::parse(text), "cfg.json"); });
   };
   EXPECT_NE(create(R"({"preset": "yu"})").find("cfg.json: key 'preset'"), std::string::npos);
   EXPECT_NE(create(R"({"measurement": {"sigma": 1}})").find("key 'measurement.sigma'"), std::string::npos);
   EXPECT_NE(create(R"({"filter": {"max_iterations": 0}})").find("key 'filter.max_iterations'"), std::string::npos);
-  EXPECT_EQ(create(R"({"preset": "paper"})"), "no error");
+  EXPECT_EQ(create(R"({"preset": "paper"})"), "");
 }
 
 TEST(YuPointEkf, PresetsAndEcho) {

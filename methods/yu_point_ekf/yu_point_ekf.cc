@@ -8,20 +8,16 @@ namespace {
 
 std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::string& where) {
   return CreateStereoEkfTracker<PointTransferOptions>(
-      json, where, [](PointTransferOptions* m) { m->noise = "fixed"; }, ReadPointTransferOptions,
+      json, where, [](PointTransferOptions* m) { m->noise = MeasurementNoise::kFixed; }, ReadPointTransferOptions,
       PointTransferOptionsToJson, [](const PointTransferOptions& m) { return std::make_unique<PointTransferModel>(m); });
 }
 
 }  // namespace
 
 TrackerInfo YuPointEkfInfo() {
-  TrackerInfo info;
-  info.name = "yu_point_ekf";
-  info.description = "Point-trifocal EKF on segment endpoints (Yu, Wong, Chang et al., IEEE TIM 2008)";
-  info.create = Create;
-  // Two points (8 scalars) determine the pose; one stereo line gives two.
-  info.minimum_lines = 1;
-  return info;
+  // Two points (8 scalars) determine the pose; one stereo line gives two: minimum_lines 1.
+  return {"yu_point_ekf", "Point-trifocal EKF on segment endpoints (Yu, Wong, Chang et al., IEEE TIM 2008)", Create,
+          /*plumbing_only=*/false, /*minimum_lines=*/1};
 }
 
 }  // namespace slt

@@ -1,0 +1,97 @@
+#include "common/options.h"
+
+#include <gtest/gtest.h>
+
+namespace slt {
+namespace {
+
+enum class Mode { kFast, kExact };
+
+struct Inner {
+  double rate = 0.5;
+};
+
+struct Outer {
+  int count = 3;
+  bool on = true;
+  Mode mode = Mode::kFast;
+  Inner inner;
+  int follows_mode = 0;  // set while reading, from the mode read before it
+};
+
+const OptionSchema<Inner>& InnerSchema() {
+  static const OptionSchema<Inner> schema =
+      OptionSchema<Inner>().Field("rate", &Inner::rate, InRange(0.0, 1.0, "(]"), "a fraction");
+  return schema;
+}
+
+const OptionSchema<Outer>& OuterSchema() {
+  static const OptionSchema<Outer> schema =
+      OptionSchema<Outer>()
+          .Field("count", &Outer::count, AtLeast(1).Note("one at least"), "how many")
+          .Field("on", &Outer::on, "a flag")
+          .Field("mode", &Outer::mode, {{Mode::kFast, "fast"}, {Mode::kExact, "exact"}}, "a mode")
+          .OnRead([](Outer* o) { o->follows_mode = o->mode == Mode::kExact ? 7 : 1; })
+          .Child("inner", &Outer::inner, InnerSchema(), "nested")
+          .Check("count", [](const Outer& o) { return o.on || o.count == 3 ? "" : "must be 3 when off"; });
+  return schema;
+}
+
+std::string ErrorOf(const nlohmann::json& j) {
+  try {
+    Outer o;
+    JsonReader r(j, "o.json", "top");
+    OuterSchema().Read(r, &o);
+    r.RejectUnknownKeys();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(OptionSchema, ReadsWritesAndParsesModesOnce) {
+  Outer o;
+  JsonReader r(nlohmann::json{{"count", 5}, {"mode", "exact"}, {"inner", {{"rate", 1.0}}}}, "o.json");
+  OuterSchema().Read(r, &o);
+  r.RejectUnknownKeys();
+  EXPECT_EQ(o.count, 5);
+  EXPECT_EQ(o.mode, Mode::kExact);
+  EXPECT_EQ(o.inner.rate, 1.0);
+  EXPECT_EQ(o.follows_mode, 7);
+  EXPECT_TRUE(o.on);  // absent: the default
+  const nlohmann::json expected = {{"count", 5}, {"on", true}, {"mode", "exact"}, {"inner", {{"rate", 1.0}}}};
+  EXPECT_EQ(OuterSchema().ToJson(o), expected);
+}
+
+TEST(OptionSchema, ErrorsNameTheFileAndTheDottedKey) {
+  EXPECT_EQ(ErrorOf({{"count", 0}}), "o.json: key 'top.count': must be >= 1 (one at least)");
+  EXPECT_EQ(ErrorOf({{"count", 2.5}}), "o.json: key 'top.count': expected an integer, got 2.5");
+  EXPECT_EQ(ErrorOf({{"mode", "slow"}}), "o.json: key 'top.mode': must be \"fast\" or \"exact\"");
+  EXPECT_EQ(ErrorOf({{"inner", {{"rate", 0.0}}}}), "o.json: key 'top.inner.rate': must be in (0, 1]");
+  EXPECT_EQ(ErrorOf({{"inner", {{"rat", 0.1}}}}), "o.json: key 'top.inner.rat': unknown key");
+  EXPECT_EQ(ErrorOf({{"on", false}, {"count", 4}}), "o.json: key 'top.count': must be 3 when off");
+  EXPECT_EQ(ErrorOf({{"cnt", 4}}), "o.json: key 'top.cnt': unknown key");
+  EXPECT_EQ(ErrorOf({{"on", false}}), "no error");
+}
+
+TEST(NumberRange, ReasonsAndAllowedValues) {
+  EXPECT_EQ(Positive().Reason(), "must be > 0");
+  EXPECT_EQ(AtLeast(4.6).Finite().Reason(), "must be a finite number >= 4.6");
+  EXPECT_EQ(InRange(0.0, 90.0, "[)").Reason(), "must be in [0, 90)");
+  EXPECT_EQ(AnyNumber().Finite().Reason(), "must be finite");
+  EXPECT_EQ(InRange(0.0, 1.0, "()").Allowed(), "(0, 1)");
+  EXPECT_TRUE(InRange(0.0, 1.0, "(]").Contains(1.0));
+  EXPECT_FALSE(InRange(0.0, 1.0, "(]").Contains(0.0));
+  EXPECT_FALSE(Positive().Contains(std::nan("")));
+  EXPECT_FALSE(AtLeast(0.0).Finite().Contains(HUGE_VAL));
+  EXPECT_TRUE(AtLeast(0.0).Contains(HUGE_VAL));
+  // Every field of a schema has a key, a doc and its allowed values for listings.
+  for (const auto& e : OuterSchema().entries()) {
+    if (e.key.empty()) continue;  // a reading step
+    EXPECT_FALSE(e.doc.empty()) << e.key;
+    EXPECT_FALSE(e.allowed.empty()) << e.key;
+  }
+}
+
+}  // namespace
+}  // namespace slt

@@ -1,0 +1,50 @@
+// For the feature models' tests (not linked into the trackers): a few 3-D segments in front of
+// a rig, projected into a stereo frame with ids 10, 13, 16, 19 and the endpoints in the same
+// order in both images (as the simulator writes them); a small motion; a pose near another.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "dataset/stereo_sequence.h"
+#include "geometry/se3.h"
+
+namespace slt {
+
+struct TinyScene {
+  StereoRig rig;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lines = {
+      {{-0.10, 0.05, 0.50}, {0.12, -0.06, 0.62}},
+      {{0.05, -0.12, 0.45}, {0.02, 0.14, 0.55}},
+      {{-0.15, -0.10, 0.70}, {-0.05, 0.10, 0.40}},
+      {{0.10, 0.10, 0.60}, {0.16, -0.12, 0.52}},
+  };
+
+  StereoFrame Frame(const Rigid3d& cam_from_ref) const {
+    StereoFrame f;
+    const Rigid3d right_from_ref = rig.right_from_left * cam_from_ref;
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const auto& [p, q] = lines[i];
+      Segment2d l, r;
+      l << rig.left.Project(cam_from_ref * p), rig.left.Project(cam_from_ref * q);
+      r << rig.right.Project(right_from_ref * p), rig.right.Project(right_from_ref * q);
+      f.left.push_back({static_cast<std::int64_t>(10 + 3 * i), l});
+      f.right.push_back({static_cast<std::int64_t>(10 + 3 * i), r});
+    }
+    return f;
+  }
+};
+
+inline Rigid3d SomeMotion() {
+  Vector6d xi;
+  xi << 0.02, -0.01, 0.015, 0.01, -0.02, 0.015;
+  return ExpSE3(xi);
+}
+
+// A pose near `truth` where a feature's residual and Jacobian are checked away from the truth.
+inline Rigid3d NearTruth(const Rigid3d& truth) {
+  return ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+}
+
+}  // namespace slt
