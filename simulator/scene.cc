@@ -1,6 +1,8 @@
 #include "simulator/scene.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <utility>
 
 #include "simulator/random_draws.h"
@@ -10,9 +12,11 @@ namespace {
 
 // Up in the world: the camera's y axis points down.
 const Eigen::Vector3d kUp(0.0, -1.0, 0.0);
+constexpr std::uint32_t kAllEdges = ~0u;
 
-// A vertical wall as seen from inside: (a, b, out) are the distance along the wall from its
-// left end, the height above the floor and the distance out of the wall into the room.
+// A frame on a vertical wall as seen from inside: (a, b, out) are the distance along the wall
+// from its left end, the height above the floor and the distance out of the wall into the
+// room. With along = x and inward = z it is the floor's frame (a = x, b = height, out = z).
 struct Wall {
   Eigen::Vector3d origin;  // the left end, on the floor
   Eigen::Vector3d along;   // unit, horizontal, to the right as seen from inside
@@ -22,49 +26,174 @@ struct Wall {
   }
 };
 
+// Texture presets: the contrasts are kept well below the steps between surfaces, so that the
+// edges of the scene are its strongest gradients.
+SurfaceTexture Paint(double albedo) { return {albedo, 0.05, TexturePattern::kMottled, 0.4, 0}; }
+SurfaceTexture Wood(double albedo) { return {albedo, 0.1, TexturePattern::kGrain, 0.05, 0}; }
+SurfaceTexture Cardboard(double albedo) { return {albedo, 0.08, TexturePattern::kMottled, 0.03, 0}; }
+SurfaceTexture Flat(double albedo) { return {albedo, 0.0, TexturePattern::kFlat, 0.1, 0}; }
+// Lamps shine: an albedo above 1 stands for their own light (kept below saturation, which
+// would move their edges).
+constexpr double kLampAlbedo = 1.05;
+
 class SceneBuilder {
  public:
-  explicit SceneBuilder(std::vector<Line3d>* lines) : lines_(lines) {}
-  void Add(const Eigen::Vector3d& p, const Eigen::Vector3d& q) { lines_->push_back({p, q}); }
-  void Add(const Wall& w, double a0, double b0, double a1, double b1, double out = 0.0) {
-    Add(w.At(a0, b0, out), w.At(a1, b1, out));
+  SceneBuilder(std::vector<Surface>* surfaces, std::uint64_t seed)
+      : surfaces_(surfaces), texture_key_(StreamSeed(seed, "texture")) {}
+
+  // A convex polygon with the texture frame (origin, s, t); each surface gets its own piece
+  // of the pattern unless it continues another one (same frame and seed: pieces of a wall).
+  void Add(std::vector<Eigen::Vector3d> vertices, const Eigen::Vector3d& front, SurfaceTexture texture,
+           std::uint32_t line_edges, const Eigen::Vector3d& origin, const Eigen::Vector3d& s,
+           const Eigen::Vector3d& t, bool own_pattern = true) {
+    if (own_pattern) texture.seed = MixSeed(texture_key_ + surfaces_->size());
+    Surface surface = MakeSurface(std::move(vertices), front, texture, line_edges);
+    surface.texture_origin = origin;
+    surface.axis_s = s;
+    surface.axis_t = t;
+    surfaces_->push_back(std::move(surface));
   }
-  // The four edges of the rectangle [a0, a1] x [b0, b1] on a wall.
-  void AddRectangle(const Wall& w, double a0, double b0, double a1, double b1, double out = 0.0) {
-    Add(w, a0, b0, a1, b0, out);
-    Add(w, a1, b0, a1, b1, out);
-    Add(w, a1, b1, a0, b1, out);
-    Add(w, a0, b1, a0, b0, out);
+
+  // The rectangle [a0, a1] x [b0, b1] on a wall at distance `out`, facing into the room.
+  // Edge order: bottom, right, top, left. With `wall_seed` set the pattern continues the
+  // wall's own (the pieces of one wall).
+  void Rect(const Wall& w, double a0, double b0, double a1, double b1, double out, const SurfaceTexture& texture,
+            std::uint32_t edges = kAllEdges, const std::uint64_t* wall_seed = nullptr) {
+    SurfaceTexture t = texture;
+    if (wall_seed != nullptr) t.seed = *wall_seed;
+    Add({w.At(a0, b0, out), w.At(a1, b0, out), w.At(a1, b1, out), w.At(a0, b1, out)}, w.inward, t, edges,
+        w.At(0.0, 0.0, out), w.along, kUp, wall_seed == nullptr);
   }
-  // A horizontal rectangle at height y (a floor or ceiling fixture), x in [x0, x1], z in [z0, z1].
-  void AddHorizontalRectangle(double y, double x0, double x1, double z0, double z1) {
-    Add({x0, y, z0}, {x1, y, z0});
-    Add({x1, y, z0}, {x1, y, z1});
-    Add({x1, y, z1}, {x0, y, z1});
-    Add({x0, y, z1}, {x0, y, z0});
+
+  // The box [a0, a1] x [b0, b1] x [out0, out1] in a wall's frame; every face but those in
+  // `skip` ("back" = against the wall, "bottom" = on the floor or a board).
+  void Box(const Wall& w, double a0, double b0, double a1, double b1, double out0, double out1,
+           const SurfaceTexture& texture, bool skip_back = false, bool skip_bottom = false,
+           bool skip_front = false) {
+    const auto at = [&](double a, double b, double o) { return w.At(a, b, o); };
+    const Eigen::Vector3d corner = at(a0, b0, out0);
+    if (!skip_front) {
+      Add({at(a0, b0, out1), at(a1, b0, out1), at(a1, b1, out1), at(a0, b1, out1)}, w.inward, texture, kAllEdges,
+          corner, w.along, kUp);
+    }
+    if (!skip_back) {
+      Add({at(a0, b0, out0), at(a1, b0, out0), at(a1, b1, out0), at(a0, b1, out0)}, -w.inward, texture, kAllEdges,
+          corner, w.along, kUp);
+    }
+    Add({at(a0, b0, out0), at(a0, b0, out1), at(a0, b1, out1), at(a0, b1, out0)}, -w.along, texture, kAllEdges,
+        corner, w.inward, kUp);
+    Add({at(a1, b0, out0), at(a1, b0, out1), at(a1, b1, out1), at(a1, b1, out0)}, w.along, texture, kAllEdges,
+        corner, w.inward, kUp);
+    Add({at(a0, b1, out0), at(a1, b1, out0), at(a1, b1, out1), at(a0, b1, out1)}, kUp, texture, kAllEdges, corner,
+        w.along, w.inward);
+    if (!skip_bottom) {
+      Add({at(a0, b0, out0), at(a1, b0, out0), at(a1, b0, out1), at(a0, b0, out1)}, -kUp, texture, kAllEdges,
+          corner, w.along, w.inward);
+    }
   }
-  // A framed picture: the outer and inner edges of its frame, 2 cm off the wall.
-  void AddPicture(const Wall& w, double a0, double b0, double a1, double b1, double frame_width) {
-    AddRectangle(w, a0, b0, a1, b1, 0.02);
-    AddRectangle(w, a0 + frame_width, b0 + frame_width, a1 - frame_width, b1 - frame_width, 0.02);
+
+  // The wall [0, length] x [0, height] minus rectangular openings {a0, b0, a1, b1} (filled by
+  // frames, doors, panels added separately), as rectangles: columns between the openings'
+  // sides, each split around the openings spanning it. Only the wall's outline is a line;
+  // the pieces share the wall's pattern, so the cuts do not show.
+  void WallWithOpenings(const Wall& w, double length, double height, const std::vector<Eigen::Vector4d>& openings,
+                        const SurfaceTexture& texture) {
+    const std::uint64_t seed = MixSeed(texture_key_ + surfaces_->size());
+    std::vector<double> columns{0.0, length};
+    for (const Eigen::Vector4d& o : openings) columns.insert(columns.end(), {o[0], o[2]});
+    std::sort(columns.begin(), columns.end());
+    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+    for (std::size_t i = 0; i + 1 < columns.size(); ++i) {
+      const double a0 = columns[i], a1 = columns[i + 1];
+      std::vector<std::pair<double, double>> blocked;
+      for (const Eigen::Vector4d& o : openings) {
+        if (o[0] <= a0 && o[2] >= a1) blocked.emplace_back(o[1], o[3]);
+      }
+      std::sort(blocked.begin(), blocked.end());
+      double b = 0.0;
+      blocked.emplace_back(height, height);
+      for (const auto& [b0, b1] : blocked) {
+        if (b0 > b) {
+          // Edges: bottom, right, top, left; flagged where they lie on the wall's outline.
+          const std::uint32_t edges = (b == 0.0 ? 1u : 0u) | (a1 == length ? 2u : 0u) | (b0 == height ? 4u : 0u) |
+                                      (a0 == 0.0 ? 8u : 0u);
+          Rect(w, a0, b, a1, b0, 0.0, texture, edges, &seed);
+        }
+        b = std::max(b, b1);
+      }
+    }
   }
-  // A door: the jambs and head of its frame, and the edges of the leaf, set into the wall.
-  void AddDoor(const Wall& w, double a0, double width, double height) {
-    const double a1 = a0 + width;
-    Add(w, a0, 0.0, a0, height);
-    Add(w, a0, height, a1, height);
-    Add(w, a1, height, a1, 0.0);
-    const double inset = 0.06;
-    Add(w, a0 + inset, 0.0, a0 + inset, height - inset, -0.03);
-    Add(w, a0 + inset, height - inset, a1 - inset, height - inset, -0.03);
-    Add(w, a1 - inset, height - inset, a1 - inset, 0.0, -0.03);
+
+  // A framed opening [a0, a1] x [b0, b1] in a wall (filling the same opening of the wall): a
+  // band of mitred frame pieces `frame_width` wide in the wall's plane (none at the bottom
+  // when b0 is the floor), reveals back to depth `recess`, and the leaf or pane there.
+  void FramedOpening(const Wall& w, double a0, double b0, double a1, double b1, double frame_width, double recess,
+                     const SurfaceTexture& frame, const SurfaceTexture& leaf) {
+    const bool bottom_frame = b0 > 0.0;
+    const double fw = frame_width, ib0 = bottom_frame ? b0 + fw : b0;
+    const double ia0 = a0 + fw, ia1 = a1 - fw, ib1 = b1 - fw;  // the inner opening
+    const auto at = [&](double a, double b, double o = 0.0) { return w.At(a, b, o); };
+    const Eigen::Vector3d origin = at(0.0, 0.0);
+    // Left jamb, head, right jamb, sill piece; edges in the order given, the mitres unflagged.
+    Add({at(a0, b0), at(ia0, ib0), at(ia0, ib1), at(a0, b1)}, w.inward, frame, bottom_frame ? 0b1010u : 0b1011u,
+        origin, kUp, w.along);
+    Add({at(a0, b1), at(ia0, ib1), at(ia1, ib1), at(a1, b1)}, w.inward, frame, 0b1010u, origin, w.along, kUp);
+    Add({at(a1, b1), at(ia1, ib1), at(ia1, ib0), at(a1, b0)}, w.inward, frame, bottom_frame ? 0b1010u : 0b1110u,
+        origin, kUp, w.along);
+    if (bottom_frame) {
+      Add({at(a1, b0), at(ia1, ib0), at(ia0, ib0), at(a0, b0)}, w.inward, frame, 0b1010u, origin, w.along, kUp);
+    }
+    // Reveals: left, top, right.
+    const double r = -recess;
+    Rect(Wall{at(ia0, 0.0), w.inward * -1.0, w.along}, 0.0, ib0, recess, ib1, 0.0, frame);
+    Add({at(ia0, ib1), at(ia1, ib1), at(ia1, ib1, r), at(ia0, ib1, r)}, -kUp, frame, kAllEdges, origin, w.along,
+        w.inward);
+    Rect(Wall{at(ia1, 0.0, r), w.inward, -w.along}, 0.0, ib0, recess, ib1, 0.0, frame);
+    // The sill of a window, the threshold of a door (which closes the floor under the recess).
+    Add({at(ia0, ib0), at(ia1, ib0), at(ia1, ib0, r), at(ia0, ib0, r)}, kUp, frame, kAllEdges, origin, w.along,
+        w.inward);
+    Rect(w, ia0, ib0, ia1, ib1, r, leaf);
+  }
+
+  // A picture: a frame box `depth` deep whose front is a band `frame_width` wide around the
+  // canvas (a texture boundary).
+  void Picture(const Wall& w, double a0, double b0, double a1, double b1, double frame_width, double depth,
+               const SurfaceTexture& frame, const SurfaceTexture& canvas) {
+    Box(w, a0, b0, a1, b1, 0.0, depth, frame, true, false, true);
+    const double fw = frame_width;
+    Rect(w, a0, b0, a1, b0 + fw, depth, frame, 0b1011u);          // bottom band
+    Rect(w, a0, b1 - fw, a1, b1, depth, frame, 0b1110u);          // top band
+    Rect(w, a0, b0 + fw, a0 + fw, b1 - fw, depth, frame, 0b1010u);  // left band
+    Rect(w, a1 - fw, b0 + fw, a1, b1 - fw, depth, frame, 0b1010u);  // right band
+    Rect(w, a0 + fw, b0 + fw, a1 - fw, b1 - fw, depth, canvas);
+  }
+
+  // A table: a top `thickness` thick and four square legs.
+  void Table(const Wall& w, double a0, double a1, double out0, double out1, double height, double thickness,
+             double leg, const SurfaceTexture& texture) {
+    Box(w, a0, height - thickness, a1, height, out0, out1, texture);
+    for (const double a : {a0 + 0.02, a1 - 0.02 - leg}) {
+      for (const double o : {out0 + 0.02, out1 - 0.02 - leg}) {
+        Box(w, a, 0.0, a + leg, height - thickness, o, o + leg, texture, false, true);
+      }
+    }
   }
 
  private:
-  std::vector<Line3d>* lines_;
+  std::vector<Surface>* surfaces_;
+  std::uint64_t texture_key_;
 };
 
-void MakePaperScene(const PaperSceneConfig& c, RandomStream& rng, std::vector<Line3d>* lines) {
+// A reflectance for a new book: uniform in [0.12, 0.85], at least 0.15 away from its
+// neighbour's so that the spines are told apart.
+double BookAlbedo(RandomStream& rng, double previous) {
+  while (true) {
+    const double albedo = Uniform(rng, 0.12, 0.85);
+    if (std::abs(albedo - previous) >= 0.15) return albedo;
+  }
+}
+
+void MakePaperScene(const PaperSceneConfig& c, RandomStream& rng, std::uint64_t seed, Scene* scene) {
   // Always six draws per line: line i uses draws 6i .. 6i+5, so the first N lines of a scene
   // are the N-line scene of the same seed.
   for (int i = 0; i < c.lines; ++i) {
@@ -72,15 +201,31 @@ void MakePaperScene(const PaperSceneConfig& c, RandomStream& rng, std::vector<Li
     for (int k = 0; k < 3; ++k) mid[k] = c.box_center_m[k] + c.box_size_m[k] * Uniform(rng, -0.5, 0.5);
     const Eigen::Vector3d direction = UniformUnitVector(rng);
     const double half_length = 0.5 * Uniform(rng, c.min_length_m, c.max_length_m);
-    lines->push_back({mid - half_length * direction, mid + half_length * direction});
+    scene->lines.push_back({mid - half_length * direction, mid + half_length * direction});
   }
+  // The image form: each segment is one long edge of a bar 4 mm wide, turned towards the
+  // camera at frame 0 (about 7 px at 0.5 m), bright on a darker textured backdrop.
+  SceneBuilder s(&scene->surfaces, seed);
+  const double bar_width = 0.004;
+  for (const Line3d& line : scene->lines) {
+    const Eigen::Vector3d along = line.q - line.p, mid = 0.5 * (line.p + line.q);
+    Eigen::Vector3d across = along.cross(mid);
+    if (across.norm() < 1e-9 * along.norm() * mid.norm()) across = along.cross(Eigen::Vector3d::UnitZ());
+    if (across.norm() < 1e-12) across = along.cross(Eigen::Vector3d::UnitX());
+    across = bar_width * across.normalized();
+    s.Add({line.p, line.q, line.q + across, line.p + across}, -mid, Flat(0.85), 0b0001u, line.p,
+          along.normalized(), across.normalized());
+    scene->surfaces.back().two_sided = true;
+  }
+  const double z = c.box_center_m.z() + 0.5 * c.box_size_m.z() + 0.7;
+  const Wall backdrop{{-4.0, 3.0, z}, {1.0, 0.0, 0.0}, {0.0, 0.0, -1.0}};
+  s.Rect(backdrop, 0.0, 0.0, 8.0, 6.0, 0.0, {0.3, 0.2, TexturePattern::kMottled, 0.04, 0}, 0u);
 }
 
-// Books on one shelf board between a0 and a1: one group of 4-9 books standing at a random
-// place, spines `out` from the wall. Each book contributes its top edge; between two books
-// one vertical edge up to the taller one's top (that is the edge an image shows).
+// Books on one shelf board between a0 and a1: one group of 4-9 books of random width, height
+// and reflectance standing at a random place, spines `front` from the wall.
 void AddBooks(SceneBuilder& s, const Wall& w, RandomStream& rng, double a0, double a1, double board,
-              double max_height, double out) {
+              double max_height, double front) {
   const int count = 4 + static_cast<int>(UniformIndex(rng, 6));
   std::vector<std::pair<double, double>> books;  // (width, height)
   double total = 0.0;
@@ -90,86 +235,104 @@ void AddBooks(SceneBuilder& s, const Wall& w, RandomStream& rng, double a0, doub
   }
   // The caller's shelves are far wider than nine books, so the whole group always fits.
   double a = a0 + Uniform(rng, 0.0, a1 - a0 - total);
-  double previous_height = 0.0;
+  double albedo = 0.0;
   for (const auto& [width, height] : books) {
-    s.Add(w, a, board, a, board + std::max(height, previous_height), out);
-    s.Add(w, a, board + height, a + width, board + height, out);
+    albedo = BookAlbedo(rng, albedo);
+    const double depth = Uniform(rng, 0.16, 0.24);
+    s.Box(w, a, board, a + width, board + height, front - depth, front, Paint(albedo), true, true);
     a += width;
-    previous_height = height;
   }
-  s.Add(w, a, board, a, board + previous_height, out);
 }
 
-void MakeRoomScene(const RoomSceneConfig& c, RandomStream& rng, std::vector<Line3d>* lines) {
-  SceneBuilder s(lines);
+void MakeRoomScene(const RoomSceneConfig& c, RandomStream& rng, std::uint64_t seed, Scene* scene) {
+  SceneBuilder s(&scene->surfaces, seed);
   const double floor_y = c.camera_height_m, h = c.height_m, W = c.width_m, D = c.depth_m;
   const double z_back = -0.4 * D, z_front = 0.6 * D, x_left = -0.5 * W, x_right = 0.5 * W;
   const Wall front{{x_left, floor_y, z_front}, {1.0, 0.0, 0.0}, {0.0, 0.0, -1.0}};
   const Wall right{{x_right, floor_y, z_front}, {0.0, 0.0, -1.0}, {-1.0, 0.0, 0.0}};
   const Wall back{{x_right, floor_y, z_back}, {-1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
   const Wall left{{x_left, floor_y, z_back}, {0.0, 0.0, 1.0}, {1.0, 0.0, 0.0}};
+  const Wall floor{{0.0, floor_y, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};  // a = x, b = height, out = z
+  const double mid = 0.5 * W;
 
-  // The shell: vertical corners, floor and ceiling edges, a ceiling lamp.
-  for (const Wall* w : {&front, &right, &back, &left}) {
-    const double length = (w == &front || w == &back) ? W : D;
-    s.Add(*w, 0.0, 0.0, 0.0, h);
-    s.Add(*w, 0.0, 0.0, length, 0.0);
-    s.Add(*w, 0.0, h, length, h);
-  }
-  s.AddHorizontalRectangle(floor_y - h, -0.3, 0.3, 0.2 * D - 0.3, 0.2 * D + 0.3);
+  // The shell: floor, ceiling, four walls with the door and window openings.
+  s.Add({{x_left, floor_y, z_back}, {x_right, floor_y, z_back}, {x_right, floor_y, z_front}, {x_left, floor_y, z_front}},
+        kUp, Wood(0.42), kAllEdges, {0.0, floor_y, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+  const double ceiling_y = floor_y - h;
+  s.Add({{x_left, ceiling_y, z_back}, {x_right, ceiling_y, z_back}, {x_right, ceiling_y, z_front},
+         {x_left, ceiling_y, z_front}},
+        -kUp, Paint(0.8), kAllEdges, {0.0, ceiling_y, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+  const double door_a0 = W - 1.3, door_width = 0.9, door_height = 2.05;
+  const double window_a0 = 0.55 * D, window_a1 = window_a0 + 1.4;
+  s.WallWithOpenings(front, W, h, {{door_a0, 0.0, door_a0 + door_width, door_height}}, Paint(0.72));
+  s.WallWithOpenings(right, D, h, {}, Paint(0.66));
+  s.WallWithOpenings(back, W, h, {{0.6, 0.0, 1.5, door_height}}, Paint(0.7));
+  s.WallWithOpenings(left, D, h, {{window_a0, 0.9, window_a1, 2.1}}, Paint(0.64));
 
-  // Front wall, left part: a bookshelf 1.6 m wide, 2 m high, 0.32 m deep, six boards.
-  const double shelf_a0 = 0.3, shelf_a1 = 1.9, shelf_top = 2.0, shelf_depth = 0.32;
-  s.Add(front, shelf_a0, 0.0, shelf_a0, shelf_top, shelf_depth);
-  s.Add(front, shelf_a1, 0.0, shelf_a1, shelf_top, shelf_depth);
-  s.Add(front.At(shelf_a0, shelf_top, 0.0), front.At(shelf_a0, shelf_top, shelf_depth));
-  s.Add(front.At(shelf_a1, shelf_top, 0.0), front.At(shelf_a1, shelf_top, shelf_depth));
-  s.Add(front, shelf_a0, shelf_top, shelf_a1, shelf_top, shelf_depth);
+  // Front wall, left part: a bookshelf 1.6 m wide, 2 m high, 0.32 m deep, a plinth and four
+  // boards, books on each of the five shelves.
+  const double shelf_a0 = 0.3, shelf_a1 = 1.9, shelf_top = 2.0, shelf_depth = 0.32, side = 0.02;
+  const SurfaceTexture shelf_wood = Wood(0.55), back_panel = Wood(0.32);
+  s.Box(front, shelf_a0, 0.0, shelf_a0 + side, shelf_top, 0.0, shelf_depth, shelf_wood, true, true);
+  s.Box(front, shelf_a1 - side, 0.0, shelf_a1, shelf_top, 0.0, shelf_depth, shelf_wood, true, true);
+  s.Box(front, shelf_a0 + side, shelf_top - side, shelf_a1 - side, shelf_top, 0.0, shelf_depth, shelf_wood, true,
+        true);
+  s.Rect(front, shelf_a0 + side, 0.0, shelf_a1 - side, shelf_top - side, 0.005, back_panel);
   const double board_step = 0.37;
   for (int i = 0; i < 5; ++i) {
     const double board = 0.08 + i * board_step;
-    s.Add(front, shelf_a0, board, shelf_a1, board, shelf_depth);
-    AddBooks(s, front, rng, shelf_a0 + 0.02, shelf_a1 - 0.02, board, board_step - 0.06, shelf_depth - 0.02);
+    s.Box(front, shelf_a0 + side, i == 0 ? 0.0 : board - side, shelf_a1 - side, board, 0.005, shelf_depth, shelf_wood,
+          true, true);
+    AddBooks(s, front, rng, shelf_a0 + 0.04, shelf_a1 - 0.04, board, board_step - 0.06, shelf_depth - 0.02);
   }
-  // Front wall, middle: a picture above a desk with a monitor; right part: a door.
-  const double mid = 0.5 * W;
-  const double picture_width = Uniform(rng, 0.6, 0.8), picture_height = Uniform(rng, 0.45, 0.6);
-  s.AddPicture(front, mid - 0.3, 1.35, mid - 0.3 + picture_width, 1.35 + picture_height, 0.06);
-  const double desk_a0 = mid - 0.1, desk_a1 = mid + 0.9, desk_top = 0.75, desk_out0 = 0.05, desk_out1 = 0.8;
-  s.Add(front, desk_a0, desk_top, desk_a1, desk_top, desk_out1);
-  s.Add(front, desk_a0, desk_top - 0.03, desk_a1, desk_top - 0.03, desk_out1);
-  s.Add(front, desk_a0, desk_top, desk_a1, desk_top, desk_out0);
-  s.Add(front.At(desk_a0, desk_top, desk_out0), front.At(desk_a0, desk_top, desk_out1));
-  s.Add(front.At(desk_a1, desk_top, desk_out0), front.At(desk_a1, desk_top, desk_out1));
-  s.Add(front, desk_a0 + 0.03, 0.0, desk_a0 + 0.03, desk_top - 0.03, desk_out1 - 0.03);
-  s.Add(front, desk_a1 - 0.03, 0.0, desk_a1 - 0.03, desk_top - 0.03, desk_out1 - 0.03);
-  const double monitor_a0 = mid + 0.2, monitor_out = 0.3;
-  s.AddRectangle(front, monitor_a0, 1.0, monitor_a0 + 0.55, 1.33, monitor_out);
-  s.AddRectangle(front, monitor_a0 + 0.02, 1.02, monitor_a0 + 0.53, 1.31, monitor_out + 0.005);
-  s.Add(front, monitor_a0 + 0.25, desk_top, monitor_a0 + 0.25, 1.0, monitor_out + 0.02);
-  s.Add(front, monitor_a0 + 0.30, desk_top, monitor_a0 + 0.30, 1.0, monitor_out + 0.02);
-  s.AddDoor(front, W - 1.3, 0.9, 2.05);
 
-  // Left wall: a window with a cross bar and a radiator below it.
-  const double window_a0 = 0.55 * D, window_a1 = window_a0 + 1.4;
-  s.AddRectangle(left, window_a0, 0.9, window_a1, 2.1);
-  s.AddRectangle(left, window_a0 + 0.05, 0.95, window_a1 - 0.05, 2.05, -0.05);
-  s.Add(left, 0.5 * (window_a0 + window_a1), 0.95, 0.5 * (window_a0 + window_a1), 2.05, -0.04);
-  s.Add(left, window_a0 + 0.05, 1.6, window_a1 - 0.05, 1.6, -0.04);
-  s.AddRectangle(left, window_a0 + 0.1, 0.15, window_a1 - 0.1, 0.65, 0.08);
-  for (int i = 1; i < 4; ++i) {
-    const double a = window_a0 + 0.1 + i * (window_a1 - window_a0 - 0.2) / 4.0;
-    s.Add(left, a, 0.15, a, 0.65, 0.08);
+  // Front wall, middle: a picture above a desk with a monitor and a keyboard; right: a door.
+  const double picture_width = Uniform(rng, 0.6, 0.8), picture_height = Uniform(rng, 0.45, 0.6);
+  s.Picture(front, mid - 0.3, 1.35, mid - 0.3 + picture_width, 1.35 + picture_height, 0.06, 0.02, Wood(0.25),
+            Paint(Uniform(rng, 0.45, 0.6)));
+  const double desk_a0 = mid - 0.1, desk_a1 = mid + 0.9, desk_top = 0.75;
+  s.Table(front, desk_a0, desk_a1, 0.05, 0.8, desk_top, 0.03, 0.04, Wood(0.6));
+  const double monitor_a0 = mid + 0.2, monitor_out = 0.3;
+  s.Box(front, monitor_a0 + 0.25, desk_top, monitor_a0 + 0.3, 1.0, monitor_out - 0.03, monitor_out - 0.01, Flat(0.15),
+        false, true);
+  s.Box(front, monitor_a0, 1.0, monitor_a0 + 0.55, 1.33, monitor_out - 0.01, monitor_out, Flat(0.1));
+  s.Rect(front, monitor_a0 + 0.02, 1.02, monitor_a0 + 0.53, 1.31, monitor_out + 0.002, Paint(0.35));
+  s.Box(front, mid + 0.15, desk_top, mid + 0.6, desk_top + 0.02, 0.45, 0.6, Flat(0.2), false, true);
+  s.FramedOpening(front, door_a0, 0.0, door_a0 + door_width, door_height, 0.06, 0.04, Paint(0.9), Wood(0.5));
+
+  // Left wall: a window with a cross bar, a sill and a radiator below it; boxes near the corner.
+  s.FramedOpening(left, window_a0, 0.9, window_a1, 2.1, 0.05, 0.1, Paint(0.9), Flat(0.97));
+  const double window_mid = 0.5 * (window_a0 + window_a1);
+  s.Box(left, window_mid - 0.02, 0.95, window_mid + 0.02, 1.58, -0.1, -0.06, Paint(0.9), true);
+  s.Box(left, window_mid - 0.02, 1.62, window_mid + 0.02, 2.05, -0.1, -0.06, Paint(0.9), true);
+  s.Box(left, window_a0 + 0.05, 1.58, window_a1 - 0.05, 1.62, -0.1, -0.06, Paint(0.9), true);
+  s.Box(left, window_a0 - 0.05, 0.87, window_a1 + 0.05, 0.9, 0.0, 0.12, Paint(0.85), true);
+  const double radiator_a0 = window_a0 + 0.1, radiator_a1 = window_a1 - 0.1;
+  s.Box(left, radiator_a0, 0.15, radiator_a1, 0.65, 0.04, 0.1, Paint(0.8), true, false, true);
+  const int fins = 8;
+  for (int i = 0; i < fins; ++i) {
+    const double a = radiator_a0 + i * (radiator_a1 - radiator_a0) / fins;
+    s.Rect(left, a, 0.15, a + (radiator_a1 - radiator_a0) / fins, 0.65, 0.1, Paint(i % 2 ? 0.8 : 0.62));
   }
-  // Right wall: two pictures. Back wall: a door and a poster.
-  s.AddPicture(right, 1.0, 1.3, 1.0 + Uniform(rng, 0.5, 0.8), 1.9, 0.05);
-  s.AddPicture(right, 2.3, 1.2, 2.3 + Uniform(rng, 0.7, 1.0), 1.8, 0.07);
-  s.AddDoor(back, 0.6, 0.9, 2.05);
-  s.AddRectangle(back, mid, 1.1, mid + 0.6, 1.9, 0.005);
+  const double box_a = D - 1.0, box_width = Uniform(rng, 0.4, 0.55), box_height = Uniform(rng, 0.3, 0.45);
+  s.Box(left, box_a, 0.0, box_a + box_width, box_height, 0.05, 0.05 + Uniform(rng, 0.35, 0.5), Cardboard(0.5),
+        false, true);
+  s.Box(left, box_a + 0.05, box_height, box_a + 0.05 + Uniform(rng, 0.25, 0.35),
+        box_height + Uniform(rng, 0.15, 0.3), 0.1, 0.1 + Uniform(rng, 0.25, 0.32), Cardboard(0.36), false, true);
+
+  // Right wall: two pictures, a low table with a box on it. Back wall: a door and a poster.
+  s.Picture(right, 1.0, 1.3, 1.0 + Uniform(rng, 0.5, 0.8), 1.9, 0.05, 0.02, Wood(0.3), Paint(Uniform(rng, 0.4, 0.55)));
+  s.Picture(right, 2.3, 1.2, 2.3 + Uniform(rng, 0.7, 1.0), 1.8, 0.07, 0.02, Paint(0.88), Paint(Uniform(rng, 0.2, 0.35)));
+  s.Table(right, 0.6, 1.5, 0.1, 0.6, 0.7, 0.03, 0.04, Wood(0.38));
+  s.Box(right, 0.8, 0.7, 1.1, 0.7 + Uniform(rng, 0.15, 0.25), 0.2, 0.45, Cardboard(0.58), false, true);
+  s.FramedOpening(back, 0.6, 0.0, 1.5, door_height, 0.06, 0.04, Paint(0.9), Wood(0.5));
+  s.Rect(back, mid, 1.1, mid + 0.6, 1.9, 0.005, Paint(0.3));
+  // A ceiling lamp.
+  s.Box(floor, -0.3, h - 0.04, 0.3, h, 0.2 * D - 0.3, 0.2 * D + 0.3, Flat(kLampAlbedo));
 }
 
-void MakeCorridorScene(const CorridorSceneConfig& c, RandomStream& rng, std::vector<Line3d>* lines) {
-  SceneBuilder s(lines);
+void MakeCorridorScene(const CorridorSceneConfig& c, RandomStream& rng, std::uint64_t seed, Scene* scene) {
+  SceneBuilder s(&scene->surfaces, seed);
   const double floor_y = c.camera_height_m, h = c.height_m, W = c.width_m;
   const double z_back = -2.0, z_far = c.length_m - 2.0, x_left = -0.5 * W, x_right = 0.5 * W;
   const double ceiling_y = floor_y - h, length = z_far - z_back;
@@ -179,20 +342,25 @@ void MakeCorridorScene(const CorridorSceneConfig& c, RandomStream& rng, std::vec
   const Wall right{{x_right, floor_y, z_back}, {0.0, 0.0, 1.0}, {-1.0, 0.0, 0.0}};
   const Wall far_end{{x_left, floor_y, z_far}, {1.0, 0.0, 0.0}, {0.0, 0.0, -1.0}};
   const Wall back_end{{x_right, floor_y, z_back}, {-1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
+  const Wall floor{{0.0, floor_y, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
 
-  // Floor and ceiling edges along the corridor; seams across the floor every 2 m.
-  for (const Wall* w : {&left, &right}) {
-    s.Add(*w, 0.0, 0.0, length, 0.0);
-    s.Add(*w, 0.0, h, length, h);
+  // Floor slabs 2 m long in two shades (their seams are lines), the ceiling, ceiling lamps
+  // 0.3 m x 1.2 m every 3 m.
+  for (double z = z_back; z < z_far - 1e-9; z += 2.0) {
+    const double z1 = std::min(z + 2.0, z_far);
+    const bool dark = static_cast<int>(std::lround((z - z_back) / 2.0)) % 2 == 1;
+    s.Add({{x_left, floor_y, z}, {x_right, floor_y, z}, {x_right, floor_y, z1}, {x_left, floor_y, z1}}, kUp,
+          Wood(dark ? 0.36 : 0.46), kAllEdges, {0.0, floor_y, 0.0}, {0.0, 0.0, 1.0}, {1.0, 0.0, 0.0});
   }
-  for (double z = z_back + 2.0; z < z_far; z += 2.0) s.Add({x_left, floor_y, z}, {x_right, floor_y, z});
-  // Ceiling lamps, 0.3 m x 1.2 m, every 3 m.
+  s.Add({{x_left, ceiling_y, z_back}, {x_right, ceiling_y, z_back}, {x_right, ceiling_y, z_far},
+         {x_left, ceiling_y, z_far}},
+        -kUp, Paint(0.82), kAllEdges, {0.0, ceiling_y, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
   for (double z = z_back + 3.5; z + 0.6 < z_far; z += 3.0) {
-    s.AddHorizontalRectangle(ceiling_y, -0.15, 0.15, z - 0.6, z + 0.6);
+    s.Box(floor, -0.15, h - 0.03, 0.15, h, z - 0.6, z + 0.6, Flat(kLampAlbedo));
   }
-  // Doors, alternately left and right, about every 4 m from about 3 m ahead of the camera; the
-  // chair rail (1 m high) and the panel seams below it run between them.
-  const double door_width = 0.9, door_height = 2.05, rail = 1.0, panel = 1.2;
+  // Doors, alternately left and right, about every 4 m from about 3 m ahead of the camera;
+  // between them a rail band at 1 m over panels 1.2 m wide in two shades.
+  const double door_width = 0.9, door_height = 2.05, rail = 1.0, rail_height = 0.06, panel = 1.2;
   std::vector<double> doors[2];  // start of each door along the wall, per side
   int side = 0;
   for (double a = 5.0 + Uniform(rng, -0.5, 0.5); a + door_width < length - 1.0;
@@ -201,36 +369,57 @@ void MakeCorridorScene(const CorridorSceneConfig& c, RandomStream& rng, std::vec
   }
   for (int k = 0; k < 2; ++k) {
     const Wall& w = k == 0 ? left : right;
+    std::vector<Eigen::Vector4d> openings;
     double start = 0.0;
     doors[k].push_back(length);  // the far end closes the last stretch of wall
     for (const double door : doors[k]) {
-      if (door - start > 0.2) s.Add(w, start, rail, door, rail, 0.02);
-      for (double a = start + panel; a < door - 0.2; a += panel) s.Add(w, a, 0.1, a, rail, 0.01);
-      if (door < length) s.AddDoor(w, door, door_width, door_height);
+      if (door - start > 0.2) {
+        openings.emplace_back(start, 0.0, door, rail + rail_height);
+        s.Rect(w, start, rail, door, rail + rail_height, 0.0, Paint(0.4), 0b0101u);
+        int i = 0;
+        for (double a = start; a < door - 1e-9; a += panel, ++i) {
+          const double a1 = std::min(a + panel, door);
+          s.Rect(w, a, 0.0, a1, rail, 0.0, Paint(i % 2 ? 0.66 : 0.55));
+        }
+      }
+      if (door < length) {
+        openings.emplace_back(door, 0.0, door + door_width, door_height);
+        s.FramedOpening(w, door, 0.0, door + door_width, door_height, 0.06, 0.04, Paint(0.88), Wood(0.45));
+      }
       start = door + door_width;
     }
+    s.WallWithOpenings(w, length, h, openings, Paint(0.75));
   }
   // The end walls: a door at the back, a door and a window at the far end.
-  s.AddDoor(back_end, 0.5 * W - 0.45, door_width, door_height);
-  s.AddDoor(far_end, 0.5 * W - 0.45, door_width, door_height);
-  s.AddRectangle(far_end, 0.5 * W - 0.4, door_height + 0.1, 0.5 * W + 0.4, std::min(h - 0.05, door_height + 0.4));
+  const double end_door = 0.5 * W - 0.45, window_top = std::min(h - 0.05, door_height + 0.4);
+  s.WallWithOpenings(back_end, W, h, {{end_door, 0.0, end_door + door_width, door_height}}, Paint(0.7));
+  s.FramedOpening(back_end, end_door, 0.0, end_door + door_width, door_height, 0.06, 0.04, Paint(0.88), Wood(0.45));
+  s.WallWithOpenings(far_end, W, h,
+                     {{end_door, 0.0, end_door + door_width, door_height},
+                      {0.5 * W - 0.4, door_height + 0.1, 0.5 * W + 0.4, window_top}},
+                     Paint(0.7));
+  s.FramedOpening(far_end, end_door, 0.0, end_door + door_width, door_height, 0.06, 0.04, Paint(0.88), Wood(0.45));
+  s.FramedOpening(far_end, 0.5 * W - 0.4, door_height + 0.1, 0.5 * W + 0.4, window_top, 0.04, 0.08, Paint(0.88),
+                  Flat(0.97));
 }
 
 }  // namespace
 
-std::vector<Line3d> MakeScene(const SceneConfig& config, std::uint64_t seed) {
+Scene MakeScene(const SceneConfig& config, std::uint64_t seed) {
   RandomStream rng = MakeStream(seed, "scene");
-  std::vector<Line3d> lines;
+  Scene scene;
   switch (config.type) {
     case SceneType::kPaper:
-      MakePaperScene(config.paper, rng, &lines);
-      return lines;
-    case SceneType::kRoom: MakeRoomScene(config.room, rng, &lines); break;
-    case SceneType::kCorridor: MakeCorridorScene(config.corridor, rng, &lines); break;
+      MakePaperScene(config.paper, rng, seed, &scene);
+      return scene;
+    case SceneType::kRoom: MakeRoomScene(config.room, rng, seed, &scene); break;
+    case SceneType::kCorridor: MakeCorridorScene(config.corridor, rng, seed, &scene); break;
   }
+  scene.lines = LinesFromSurfaces(scene.surfaces);
   // Fisher-Yates with our own index draw (std::shuffle's output is implementation-defined).
+  std::vector<Line3d>& lines = scene.lines;
   for (std::size_t i = lines.size(); i > 1; --i) std::swap(lines[i - 1], lines[UniformIndex(rng, i)]);
-  return lines;
+  return scene;
 }
 
 }  // namespace slt

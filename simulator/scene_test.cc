@@ -15,7 +15,7 @@ bool SameLines(const std::vector<Line3d>& a, const std::vector<Line3d>& b) {
 
 TEST(Scene, PaperLinesHaveTheConfiguredLengthsAndPlaces) {
   SceneConfig c;
-  const std::vector<Line3d> lines = MakeScene(c, 1);
+  const std::vector<Line3d> lines = MakeScene(c, 1).lines;
   ASSERT_EQ(lines.size(), 40u);
   for (const Line3d& line : lines) {
     const double length = (line.q - line.p).norm();
@@ -28,26 +28,26 @@ TEST(Scene, PaperLinesHaveTheConfiguredLengthsAndPlaces) {
 
 TEST(Scene, PaperScenesWithFewerLinesAreNested) {
   SceneConfig c;
-  const std::vector<Line3d> all = MakeScene(c, 5);
+  const std::vector<Line3d> all = MakeScene(c, 5).lines;
   c.paper.lines = 10;
-  const std::vector<Line3d> some = MakeScene(c, 5);
+  const std::vector<Line3d> some = MakeScene(c, 5).lines;
   EXPECT_TRUE(SameLines(some, std::vector<Line3d>(all.begin(), all.begin() + 10)));
-  EXPECT_FALSE(SameLines(MakeScene(c, 6), some));
+  EXPECT_FALSE(SameLines(MakeScene(c, 6).lines, some));
 }
 
 // Structured scenes: everything inside the room, nothing degenerate, ids shuffled by the seed.
 void CheckStructured(const SceneConfig& c, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  const std::vector<Line3d> lines = MakeScene(c, 1);
+  const std::vector<Line3d> lines = MakeScene(c, 1).lines;
   EXPECT_GT(lines.size(), 100u);
   for (const Line3d& line : lines) {
-    EXPECT_GT((line.q - line.p).norm(), 0.01);
+    EXPECT_GT((line.q - line.p).norm(), 0.005);  // the thinnest boards and bezels are 1 cm
     for (const Eigen::Vector3d& x : {line.p, line.q}) {
       EXPECT_TRUE((x.array() >= lo.array() - 1e-9).all() && (x.array() <= hi.array() + 1e-9).all())
           << x.transpose();
     }
   }
-  EXPECT_TRUE(SameLines(MakeScene(c, 1), lines));
-  const std::vector<Line3d> other = MakeScene(c, 2);
+  EXPECT_TRUE(SameLines(MakeScene(c, 1).lines, lines));
+  const std::vector<Line3d> other = MakeScene(c, 2).lines;
   EXPECT_FALSE(SameLines(other, lines));
 }
 
@@ -55,18 +55,18 @@ TEST(Scene, RoomStaysInsideItsWalls) {
   SceneConfig c;
   c.type = SceneType::kRoom;
   const RoomSceneConfig& r = c.room;
-  // The window and the door leaves are set up to 5 cm into the walls.
-  CheckStructured(c, {-0.5 * r.width_m - 0.05, r.camera_height_m - r.height_m, -0.4 * r.depth_m - 0.05},
-                  {0.5 * r.width_m + 0.05, r.camera_height_m, 0.6 * r.depth_m + 0.05});
+  // The window pane and the door leaves are set up to 10 cm into the walls.
+  CheckStructured(c, {-0.5 * r.width_m - 0.1, r.camera_height_m - r.height_m, -0.4 * r.depth_m - 0.1},
+                  {0.5 * r.width_m + 0.1, r.camera_height_m, 0.6 * r.depth_m + 0.1});
 }
 
 TEST(Scene, CorridorStaysInsideItsWalls) {
   SceneConfig c;
   c.type = SceneType::kCorridor;
   const CorridorSceneConfig& r = c.corridor;
-  // Door leaves are set 3 cm into the walls.
-  CheckStructured(c, {-0.5 * r.width_m - 0.03, r.camera_height_m - r.height_m, -2.0 - 0.03},
-                  {0.5 * r.width_m + 0.03, r.camera_height_m, r.length_m - 2.0 + 0.03});
+  // Door leaves are set 4 cm, the far window 8 cm into the walls.
+  CheckStructured(c, {-0.5 * r.width_m - 0.08, r.camera_height_m - r.height_m, -2.0 - 0.08},
+                  {0.5 * r.width_m + 0.08, r.camera_height_m, r.length_m - 2.0 + 0.08});
 }
 
 }  // namespace

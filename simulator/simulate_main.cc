@@ -1,22 +1,27 @@
 // simulate: writes one synthetic stereo line sequence (docs/simulation.md).
 //
-//   simulate [CONFIG.json | -] --out DIR [--seed N]
+//   simulate [CONFIG.json | -] --out DIR [--seed N] [--images [--threads N]]
 //
 // DIR/seq.json              observations, stereo-lines/1 (the rig is the tracker's rig)
 // DIR/gt.tum                ground truth, world_from_cam of the left camera, TUM
 // DIR/scene.csv             the scene's 3-D segments (id,x1,y1,z1,x2,y2,z2, world frame, m)
 // DIR/config.resolved.json  the config with every default filled in (and --seed applied)
+// DIR/mav0/...              with --images: the rendered stereo images in EuRoC's ASL layout
+//                           (docs/formats.md, docs/rendering.md)
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
+#include "render/sequence_renderer.h"
 #include "simulator/simulator.h"
 
 namespace {
@@ -46,6 +51,11 @@ int main(int argc, char** argv) {
   app.add_option("--out,-o", out_dir, "Output directory (created if missing)")->required();
   // Read as text: CLI11 would turn "-1" into 2^64 - 1 and saturate out-of-range values.
   app.add_option("--seed", seed_text, "Base seed (0 .. 2^64-1), replacing the config's 'seed'");
+  bool images = false;
+  int threads = 0;
+  app.add_flag("--images", images, "Also render the stereo images (DIR/mav0, EuRoC layout)");
+  app.add_option("--threads", threads, "Render threads (default: all cores); the images do not depend on it")
+      ->check(CLI::Range(0, 4096));
   std::optional<std::uint64_t> seed;
   try {
     app.parse(argc, argv);
@@ -92,6 +102,15 @@ int main(int argc, char** argv) {
     WriteStereoLines((dir / "seq.json").string(), result.sequence);
     WriteTumTrajectory((dir / "gt.tum").string(), result.ground_truth);
     WriteTextFileAtomically((dir / "scene.csv").string(), SceneCsv(result.lines));
+    if (images) {
+      // One OpenCV thread per render thread: the frames are the parallel work.
+      cv::setNumThreads(1);
+      const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+      WriteEurocSequence(out_dir, result, config, workers, [](int done, int total) {
+        std::fprintf(stderr, "\rsimulate: rendering frame %d/%d", done, total);
+        if (done == total) std::fprintf(stderr, "\n");
+      });
+    }
     WriteJsonFile((dir / "config.resolved.json").string(), SimulationConfigToJson(config));
 
     std::size_t observations = 0;

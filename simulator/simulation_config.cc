@@ -196,7 +196,26 @@ const OptionSchema<ObservationConfig>& ObservationSchema() {
           .Field("clip_to_image", &C::clip_to_image, "clip segments to the image (default: not for the paper scene)")
           // The outlier sampler draws segments of at least min_length_px inside the image.
           .Field("min_length_px", &C::min_length_px, FiniteAtLeast(0.0), "shorter images are not observed (px)")
-          .Field("min_depth_m", &C::min_depth_m, FinitePositive(), "endpoints nearer are cut or not observed (m)");
+          .Field("min_depth_m", &C::min_depth_m, FinitePositive(), "endpoints nearer are cut or not observed (m)")
+          .Field("occlusion", &C::occlusion,
+                 "only the parts not hidden by a surface are seen (default: not for the paper scene)");
+  return schema;
+}
+
+const OptionSchema<ImageConfig>& ImageSchema() {
+  using C = ImageConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("exposure_variation", &C::exposure_variation, InRange(0.0, 1.0, "[)"),
+                 "per-frame gain 1 + this * a slow wave in [-1, 1]")
+          .Field("vignetting", &C::vignetting, InRange(0.0, 1.0, "[)"), "brightness lost in the corners (fraction)")
+          .Field("defocus_blur_px", &C::defocus_blur_px, FiniteAtLeast(0.0), "Gaussian blur sigma (px, 0 = sharp)")
+          .Field("motion_blur_samples", &C::motion_blur_samples, InRange(1, 64),
+                 "renders averaged over the exposure (1 = no motion blur)")
+          .Field("exposure_time_frames", &C::exposure_time_frames, InRange(0.0, 1.0),
+                 "open shutter (fraction of the frame interval)")
+          .Field("read_noise", &C::read_noise, FiniteAtLeast(0.0), "Gaussian noise sigma (grey levels)")
+          .Field("shot_noise", &C::shot_noise, FiniteAtLeast(0.0), "photon noise variance per grey level");
   return schema;
 }
 
@@ -223,7 +242,8 @@ const OptionSchema<SeedOverrides>& SeedOverridesSchema() {
   static const OptionSchema<C> schema = [] {
     OptionSchema<C> s;
     for (auto [key, member] : {std::pair{"scene", &C::scene}, std::pair{"motion", &C::motion},
-                               std::pair{"noise", &C::noise}, std::pair{"outliers", &C::outliers}}) {
+                               std::pair{"noise", &C::noise}, std::pair{"outliers", &C::outliers},
+                               std::pair{"images", &C::images}}) {
       const std::string k = key;
       const auto m = member;
       std::move(s).Custom(
@@ -265,11 +285,13 @@ const OptionSchema<SimulationConfig>& SimulationSchema() {
           .OnRead([](C* c) {
             c->motion.type = DefaultMotionFor(c->scene.type);
             c->observation.clip_to_image = c->scene.type != SceneType::kPaper;
+            c->observation.occlusion = c->scene.type != SceneType::kPaper;
           })
           .Child("motion", &C::motion, MotionSchema(), "the camera's motion")
           .Child("observation", &C::observation, ObservationSchema(), "what is observed")
           .Child("noise", &C::noise, NoiseSchema(), "endpoint noise")
           .Child("outliers", &C::outliers, OutlierSchema(), "wrong segments")
+          .Child("images", &C::images, ImageSchema(), "rendered images (simulate --images, docs/rendering.md)")
           .Check("frames",
                  [](const C& c) {
                    return c.motion.type == MotionType::kLoop && c.frames < 2 ? "a loop needs at least 2 frames" : "";

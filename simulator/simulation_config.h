@@ -113,6 +113,9 @@ struct ObservationConfig {
   // Segments whose noise-free image (after clipping) is shorter are not observed.
   double min_length_px = 10.0;
   double min_depth_m = 0.05;
+  // true: only the parts of a segment not hidden by a surface of the scene are seen (the
+  // longest visible piece when an occluder splits it); false: every part in the field of view.
+  bool occlusion = false;
 };
 
 struct NoiseConfig {
@@ -133,12 +136,26 @@ struct OutlierConfig {
   double rate = 0.0;
 };
 
+// images: how the scene is drawn when images are rendered (render/, `simulate --images`);
+// docs/rendering.md gives the image formation model. The image size is the rig's.
+struct ImageConfig {
+  // Image formation, in the order applied: exposure (gain), vignetting, defocus blur, noise.
+  double exposure_variation = 0.05;  // per-frame gain 1 + this * a smooth random wave in [-1, 1]
+  double vignetting = 0.2;           // fraction of the brightness lost at the image corners
+  double defocus_blur_px = 0.5;      // standard deviation of a Gaussian blur, px (0 = sharp)
+  int motion_blur_samples = 1;       // renders averaged over the exposure (1 = no motion blur)
+  double exposure_time_frames = 0.5; // open shutter, as a fraction of the frame interval
+  double read_noise = 1.5;           // standard deviation of the Gaussian noise, grey levels
+  double shot_noise = 0.03;          // photon noise: variance = read_noise^2 + shot_noise * level
+};
+
 // Per-stream base seeds; an unset one follows SimulationConfig::seed.
 struct SeedOverrides {
   std::optional<std::uint64_t> scene;
   std::optional<std::uint64_t> motion;
   std::optional<std::uint64_t> noise;
   std::optional<std::uint64_t> outliers;
+  std::optional<std::uint64_t> images;
 };
 
 struct SimulationConfig {
@@ -157,12 +174,14 @@ struct SimulationConfig {
   ObservationConfig observation;
   NoiseConfig noise;
   OutlierConfig outliers;
+  ImageConfig images;
 
   // The base seed of each random stream.
   std::uint64_t SceneSeed() const { return seeds.scene.value_or(seed); }
   std::uint64_t MotionSeed() const { return seeds.motion.value_or(seed); }
   std::uint64_t NoiseSeed() const { return seeds.noise.value_or(seed); }
   std::uint64_t OutlierSeed() const { return seeds.outliers.value_or(seed); }
+  std::uint64_t ImageSeed() const { return seeds.images.value_or(seed); }
   // The rig given to the tracker: `rig` with focal_error_px added to every focal length.
   StereoRig TrackerRig() const;
 
@@ -171,9 +190,10 @@ struct SimulationConfig {
 };
 
 // Missing keys keep their defaults, unknown keys and invalid values throw ConfigError naming
-// `where` and the key. Two defaults follow scene.type: motion.type is DefaultMotionFor(it) and
-// observation.clip_to_image is true for the structured scenes (the paper's protocol keeps its
-// infinite lines; a room seen without clipping would observe every wall at once).
+// `where` and the key. Three defaults follow scene.type: motion.type is DefaultMotionFor(it),
+// and observation.clip_to_image and observation.occlusion are true for the structured scenes
+// (the paper's protocol keeps its infinite, unoccluded lines; a room seen without clipping
+// would observe every wall at once).
 SimulationConfig SimulationConfigFromJson(const nlohmann::json& j, const std::string& where);
 // Every field, defaults filled in; unset seed overrides are null.
 // SimulationConfigFromJson(SimulationConfigToJson(c)) == c.

@@ -68,9 +68,10 @@ TEST(SimulationConfig, EveryFieldRoundTrips) {
   c.motion.sinusoid = {0.5, 0.002, 10.0, 30.0};
   c.motion.loop = {0.5, 0.6, 10.0, 0.05, 2.0};
   c.motion.forward = {0.05, 0.01, 0.5, 40.0};
-  c.observation = {true, 20.0, 0.1};
+  c.observation = {true, 20.0, 0.1, true};
   c.noise = {NoiseModel::kGaussian, 1.5, EndpointModel::kSliding, 0.1};
   c.outliers.rate = 0.05;
+  c.images = {0.1, 0.3, 1.0, 4, 0.8, 3.0, 0.1};
   const nlohmann::json j = SimulationConfigToJson(c);
   EXPECT_EQ(j["seeds"]["noise"], 7);
   EXPECT_TRUE(j["seeds"]["scene"].is_null());
@@ -96,6 +97,11 @@ TEST(SimulationConfig, StructuredScenesDefaultToTheirMotionAndClipping) {
   EXPECT_FALSE(explicit_choice.observation.clip_to_image);
   EXPECT_EQ(read(R"({"scene": {"type": "paper"}})").motion.type, MotionType::kPaper);
   EXPECT_FALSE(read(R"({"scene": {"type": "paper"}})").observation.clip_to_image);
+  // Occlusion follows the scene too: on in the structured scenes, off in the paper's protocol.
+  EXPECT_TRUE(read(R"({"scene": {"type": "room"}})").observation.occlusion);
+  EXPECT_TRUE(read(R"({"scene": {"type": "corridor"}})").observation.occlusion);
+  EXPECT_FALSE(read(R"({"scene": {"type": "paper"}})").observation.occlusion);
+  EXPECT_FALSE(read(R"({"scene": {"type": "room"}, "observation": {"occlusion": false}})").observation.occlusion);
 }
 
 TEST(SimulationConfig, SeedOverrides) {
@@ -131,6 +137,9 @@ TEST(SimulationConfig, ErrorsNameFileAndKey) {
             "motion.sinusoid.period_min_frames");
   EXPECT_EQ(ConfigErrorOf(R"({"observation": {"min_length_px": 300}})"),
             "sim.json: key 'observation.min_length_px': must be at most half the smaller image side");
+  EXPECT_EQ(ConfigErrorOf(R"({"images": {"vignetting": 1.5}})"), "sim.json: key 'images.vignetting': must be in [0, 1)");
+  EXPECT_EQ(ConfigErrorOf(R"({"images": {"motion_blur_samples": 0}})"),
+            "sim.json: key 'images.motion_blur_samples': must be in [1, 64]");
   EXPECT_EQ(ConfigErrorOf(R"({"scene": 3})"), "sim.json: key 'scene': expected a JSON object, got number");
   EXPECT_NE(ConfigErrorOf(R"({"rig": {"width": -1}})").find("sim.json: key 'rig"), std::string::npos);
 }

@@ -1,5 +1,8 @@
 #include "simulator/simulator.h"
 
+#include <optional>
+#include <utility>
+
 #include "simulator/clipping.h"
 #include "simulator/motion.h"
 #include "simulator/random_draws.h"
@@ -13,6 +16,7 @@ struct ObservationContext {
   const std::vector<Line3d>* lines;
   const KeyedStream* noise;
   const KeyedStream* outliers;
+  const Occluders* occluders;  // null: every part of a line in view is seen
   int width;
   int height;
 };
@@ -27,6 +31,24 @@ Segment2d RandomSegment(SplitMix64& g, int width, int height, double min_length_
   }
 }
 
+// The noise-free image of the 3-D segment p-q (camera coordinates) under the observation
+// model: cut at the near plane, projected, clipped to the image when clipping. False when
+// nothing of it is seen or it is shorter than min_length_px.
+bool NoiseFreeImage(const ObservationContext& ctx, const PinholeCamera& camera, Eigen::Vector3d p, Eigen::Vector3d q,
+                    Eigen::Vector2d* a, Eigen::Vector2d* b) {
+  const ObservationConfig& obs = ctx.config->observation;
+  if (obs.clip_to_image) {
+    if (!ClipSegmentToDepth(obs.min_depth_m, &p, &q)) return false;
+    *a = camera.Project(p);
+    *b = camera.Project(q);
+    return ClipSegmentToImage(ctx.width, ctx.height, a, b) && (*a - *b).norm() >= obs.min_length_px;
+  }
+  if (p.z() < obs.min_depth_m || q.z() < obs.min_depth_m) return false;
+  *a = camera.Project(p);
+  *b = camera.Project(q);
+  return (*a - *b).norm() >= obs.min_length_px;
+}
+
 void Observe(const ObservationContext& ctx, const Rigid3d& cam_from_world, const PinholeCamera& camera,
              std::uint64_t frame, std::uint64_t camera_index, std::vector<LineObservation>* out) {
   const SimulationConfig& config = *ctx.config;
@@ -34,6 +56,8 @@ void Observe(const ObservationContext& ctx, const Rigid3d& cam_from_world, const
   const NoiseConfig& noise = config.noise;
   const KeyedStream::ImageKey noise_draws = ctx.noise->Image(frame, camera_index);
   const KeyedStream::ImageKey outlier_draws = ctx.outliers->Image(frame, camera_index);
+  const Eigen::Vector3d eye = cam_from_world.Center();
+  std::vector<Eigen::Vector2d> visible;  // visible parts of one line, reused
   out->reserve(ctx.lines->size());
   for (std::size_t id = 0; id < ctx.lines->size(); ++id) {
     const Line3d& line = (*ctx.lines)[id];
@@ -49,35 +73,46 @@ void Observe(const ObservationContext& ctx, const Rigid3d& cam_from_world, const
       offset << StandardNormalPair(g), StandardNormalPair(g);
     }
     offset *= noise.endpoint_px;
+    double s0 = 0.0, s1 = 1.0;
     if (noise.endpoints == EndpointModel::kSliding) {
-      const double s0 = Uniform(g, 0.0, noise.slide_fraction);
-      const double s1 = Uniform(g, 1.0 - noise.slide_fraction, 1.0);
+      s0 = Uniform(g, 0.0, noise.slide_fraction);
+      s1 = Uniform(g, 1.0 - noise.slide_fraction, 1.0);
       const Eigen::Vector3d d = q - p;
       q = p + s1 * d;
       p = p + s0 * d;
     }
 
     // Whether a line is seen is decided on its noise-free image, so that every noise level of
-    // a sweep observes the same lines.
+    // a sweep observes the same lines. With occlusion, of the visible parts of the (slid)
+    // segment the one with the longest image is observed: a line split by an occluder is
+    // seen as one of its pieces, as a detector that does not join collinear segments sees it.
     Eigen::Vector2d a, b;
-    if (obs.clip_to_image) {
-      if (!ClipSegmentToDepth(obs.min_depth_m, &p, &q)) continue;
-      a = camera.Project(p);
-      b = camera.Project(q);
-      if (!ClipSegmentToImage(ctx.width, ctx.height, &a, &b) || (a - b).norm() < obs.min_length_px) continue;
-      // Noise on the visible endpoints, then clipped again: a detector reports points inside.
-      // Only a segment running along the border can be pushed out entirely; it is dropped.
-      a += offset.head<2>();
-      b += offset.tail<2>();
-      if (!ClipSegmentToImage(ctx.width, ctx.height, &a, &b)) continue;
+    if (ctx.occluders == nullptr) {
+      if (!NoiseFreeImage(ctx, camera, p, q, &a, &b)) continue;
     } else {
-      if (p.z() < obs.min_depth_m || q.z() < obs.min_depth_m) continue;
-      a = camera.Project(p);
-      b = camera.Project(q);
-      if ((a - b).norm() < obs.min_length_px) continue;
-      a += offset.head<2>();
-      b += offset.tail<2>();
+      // Occlusion only matters for a line in view (most of a room is not).
+      if (!NoiseFreeImage(ctx, camera, p, q, &a, &b)) continue;
+      ctx.occluders->VisibleParts(eye, line.p, line.q, &visible);
+      const Eigen::Vector3d d = cam_from_world * line.q - cam_from_world * line.p;
+      const Eigen::Vector3d base = cam_from_world * line.p;
+      double best = -1.0;
+      for (const Eigen::Vector2d& part : visible) {
+        const double lo = std::max(part[0], s0), hi = std::min(part[1], s1);
+        Eigen::Vector2d pa, pb;
+        if (lo >= hi || !NoiseFreeImage(ctx, camera, base + lo * d, base + hi * d, &pa, &pb)) continue;
+        if ((pa - pb).norm() > best) {
+          best = (pa - pb).norm();
+          a = pa;
+          b = pb;
+        }
+      }
+      if (best < 0.0) continue;
     }
+    a += offset.head<2>();
+    b += offset.tail<2>();
+    // With clipping the noisy endpoints are clipped again: a detector reports points inside.
+    // Only a segment running along the border can be pushed out entirely; it is dropped.
+    if (obs.clip_to_image && !ClipSegmentToImage(ctx.width, ctx.height, &a, &b)) continue;
 
     LineObservation observation;
     observation.id = static_cast<std::int64_t>(id);
@@ -100,7 +135,9 @@ SimulatedSequence Simulate(const SimulationConfig& config) {
   SimulatedSequence result;
   result.true_rig = config.rig;
   result.sequence.rig = config.TrackerRig();
-  result.lines = MakeScene(config.scene, config.SceneSeed());
+  Scene scene = MakeScene(config.scene, config.SceneSeed());
+  result.lines = std::move(scene.lines);
+  result.surfaces = std::move(scene.surfaces);
   if (config.max_features > 0 && result.lines.size() > static_cast<std::size_t>(config.max_features)) {
     result.lines.resize(static_cast<std::size_t>(config.max_features));
   }
@@ -108,7 +145,10 @@ SimulatedSequence Simulate(const SimulationConfig& config) {
 
   const KeyedStream noise(config.NoiseSeed(), "noise"), outliers(config.OutlierSeed(), "outliers");
   const StereoRig& rig = config.rig;
-  const ObservationContext ctx{&config, &result.lines, &noise, &outliers, rig.width, rig.height};
+  std::optional<Occluders> occluders;
+  if (config.observation.occlusion) occluders.emplace(result.surfaces);
+  const ObservationContext ctx{&config,      &result.lines, &noise, &outliers, occluders ? &*occluders : nullptr,
+                               rig.width, rig.height};
   result.sequence.frames.resize(result.ground_truth.size());
   for (std::size_t k = 0; k < result.ground_truth.size(); ++k) {
     StereoFrame& frame = result.sequence.frames[k];

@@ -23,6 +23,8 @@ struct SimulatedSequence {
   Trajectory ground_truth;
   // The scene; index = line id (only the first max_features lines when that is set).
   std::vector<Line3d> lines;
+  // What the images show (every surface, whatever max_features).
+  std::vector<Surface> surfaces;
 };
 
 // Throws ConfigError when config.Check() fails. Deterministic: the same config gives

@@ -1,0 +1,131 @@
+#include "render/sequence_renderer.h"
+
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "dataset/euroc.h"
+#include "geometry/se3.h"
+#include "render/image_formation.h"
+#include "simulator/random_draws.h"
+
+namespace slt {
+
+SequenceRenderer::SequenceRenderer(const SimulatedSequence& sequence, const SimulationConfig& config)
+    : sequence_(sequence), config_(config), rasterizer_(sequence.surfaces) {}
+
+Rigid3d SequenceRenderer::CamFromWorld(double frame, int camera) const {
+  const Trajectory& gt = sequence_.ground_truth;
+  const double last = static_cast<double>(gt.size() - 1);
+  const double tau = std::clamp(frame, 0.0, last);
+  const std::size_t k0 = static_cast<std::size_t>(std::min(std::floor(tau), std::max(0.0, last - 1.0)));
+  Rigid3d world_from_left = gt[k0].world_from_cam;
+  const double alpha = tau - static_cast<double>(k0);
+  if (alpha > 0.0 && k0 + 1 < gt.size()) {
+    const Rigid3d step = gt[k0].world_from_cam.Inverse() * gt[k0 + 1].world_from_cam;
+    world_from_left = world_from_left * ExpSE3(alpha * LogSE3(step));
+  }
+  const Rigid3d left_from_world = world_from_left.Inverse();
+  return camera == 0 ? left_from_world : sequence_.true_rig.right_from_left * left_from_world;
+}
+
+cv::Mat SequenceRenderer::Radiance(int frame, int camera) const {
+  const StereoRig& rig = sequence_.true_rig;
+  const PinholeCamera& intrinsics = camera == 0 ? rig.left : rig.right;
+  const ImageConfig& images = config_.images;
+  cv::Mat radiance;
+  if (images.motion_blur_samples <= 1 || images.exposure_time_frames == 0.0) {
+    rasterizer_.Render(intrinsics, rig.width, rig.height, CamFromWorld(frame, camera), &radiance);
+    return radiance;
+  }
+  // Poses at the middles of equal parts of the exposure, centred on the frame time: the blur is
+  // symmetric about the frame's pose, so edges stay centred on the ground-truth lines.
+  cv::Mat sum = cv::Mat::zeros(rig.height, rig.width, CV_32FC1), one;
+  for (int j = 0; j < images.motion_blur_samples; ++j) {
+    const double offset = ((j + 0.5) / images.motion_blur_samples - 0.5) * images.exposure_time_frames;
+    rasterizer_.Render(intrinsics, rig.width, rig.height, CamFromWorld(frame + offset, camera), &one);
+    sum += one;
+  }
+  return sum / static_cast<double>(images.motion_blur_samples);
+}
+
+cv::Mat SequenceRenderer::Image(int frame, int camera) const {
+  const KeyedStream noise(config_.ImageSeed(), "image_noise");
+  const std::uint64_t key = noise.Image(static_cast<std::uint64_t>(frame), static_cast<std::uint64_t>(camera)).At(0)();
+  return FormImage(Radiance(frame, camera), config_.images, ExposureGain(config_.images, config_.ImageSeed(), frame),
+                   key);
+}
+
+void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
+                        int threads, const std::function<void(int done, int total)>& progress) {
+  namespace fs = std::filesystem;
+  const fs::path final_dir = fs::path(dir) / "mav0", work = fs::path(dir) / "mav0.partial";
+  fs::remove_all(work);
+  const char* camera_names[2] = {"cam0", "cam1"};
+  for (const char* name : camera_names) fs::create_directories(work / name / "data");
+  fs::create_directories(work / "state_groundtruth_estimate0");
+
+  const int frames = static_cast<int>(sequence.ground_truth.size());
+  std::vector<std::int64_t> timestamps(static_cast<std::size_t>(frames));
+  for (int k = 0; k < frames; ++k) timestamps[k] = EurocTimestampNs(sequence.ground_truth[k].time);
+  for (int k = 1; k < frames; ++k) {
+    if (timestamps[k] <= timestamps[k - 1]) {
+      throw std::invalid_argument(dir + ": frames " + std::to_string(k - 1) + " and " + std::to_string(k) +
+                                  " have the same timestamp in nanoseconds (frame_rate too high)");
+    }
+  }
+
+  const SequenceRenderer renderer(sequence, config);
+  std::atomic<int> next{0};
+  std::mutex mutex;
+  int done = 0;
+  std::exception_ptr failure;
+  const auto worker = [&]() {
+    try {
+      for (int k = next++; k < frames; k = next++) {
+        for (int camera = 0; camera < 2; ++camera) {
+          const fs::path file = work / camera_names[camera] / "data" / (std::to_string(timestamps[k]) + ".png");
+          if (!cv::imwrite(file.string(), renderer.Image(k, camera))) {
+            throw std::runtime_error(file.string() + ": cannot write image");
+          }
+        }
+        const std::lock_guard<std::mutex> lock(mutex);
+        ++done;
+        if (progress) progress(done, frames);
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (!failure) failure = std::current_exception();
+      next = frames;  // the others stop at their next frame
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < std::max(1, threads); ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+
+  const StereoRig& rig = sequence.sequence.rig;  // the calibration given to the tracker
+  for (int camera = 0; camera < 2; ++camera) {
+    EurocCameraInfo info;
+    info.comment = std::string("simulated ") + (camera == 0 ? "left" : "right") + " camera (simulate --images)";
+    info.body_from_cam = camera == 0 ? Rigid3d::Identity() : rig.right_from_left.Inverse();
+    info.rate_hz = config.frame_rate;
+    info.width = rig.width;
+    info.height = rig.height;
+    info.intrinsics = camera == 0 ? rig.left : rig.right;
+    WriteEurocCameraYaml((work / camera_names[camera] / "sensor.yaml").string(), info);
+    WriteEurocImageList((work / camera_names[camera] / "data.csv").string(), timestamps);
+  }
+  WriteEurocGroundTruth((work / "state_groundtruth_estimate0" / "data.csv").string(), sequence.ground_truth);
+  fs::remove_all(final_dir);
+  fs::rename(work, final_dir);
+}
+
+}  // namespace slt
