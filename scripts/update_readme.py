@@ -196,7 +196,7 @@ def loop_path(r):
 def loop_table(r):
     trials = int(r.row("loop", DEFAULT)["trials"])
     has_max = "max_trans_err_m_mean" in r.row("loop", DEFAULT)
-    head = "| method (mean of %d trials) | start–end gap | gap / path | ATE (RMSE) |%s re-bootstraps |" % (
+    head = "| method (mean of %d trials) | start–end gap | gap / path | ATE (RMSE) |%s new references |" % (
         trials, " largest error |" if has_max else "")
     lines = [head, "|---|---:|---:|---:|" + ("---:|" if has_max else "") + "---:|"]
     for m in r.methods("loop"):
@@ -204,7 +204,7 @@ def loop_table(r):
                  mm(r.value("loop", m, "ate_trans_m_mean"))]
         if has_max:
             cells.append(mm(r.value("loop", m, "max_trans_err_m_mean")))
-        cells.append(sig(r.value("loop", m, "rebootstraps_mean"), 2))
+        cells.append(sig(r.value("loop", m, "new_references_mean"), 2))
         lines.append("| `%s` | %s |" % (m, " | ".join(cells)))
     return "\n" + "\n".join(lines) + "\n"
 
