@@ -128,8 +128,9 @@ void ReadPaperValues(JsonReader& r, PlotSpec* p) {
     JsonReader value_reader((*paper)[i], r.where(), Indexed(r.KeyPath("paper"), i));
     if (!value_reader.Find("x")) value_reader.Fail("x", "required: the value of the swept parameter (any number on a \"methods\" plot)");
     ReportedValue value;
-    ReportedValueSchema().Read(value_reader, &value);
+    ReportedValueSchema().ReadFields(value_reader, &value);
     value_reader.RejectUnknownKeys();
+    ReportedValueSchema().Validate(value, value_reader.where(), value_reader.path());
     p->paper.push_back(value);
   }
 }

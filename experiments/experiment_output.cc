@@ -41,6 +41,15 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"features_available", "Features available per frame"},
     {"new_references", "New reference pairs"},
     {"lost_frames", "Lost frames"},
+    {"new_ref_few_features", "New reference pairs: fewer than min_features left"},
+    {"new_ref_feature_fraction", "New reference pairs: below min_feature_fraction"},
+    {"lost_few_measurable", "Lost frames: too few measurable features"},
+    {"lost_few_inside_gate", "Lost frames: too few features inside the gate"},
+    {"lost_no_update", "Lost frames: no update solution"},
+    {"lost_non_finite", "Lost frames: non-finite state"},
+    {"features_unmatched", "Reference features not matched in both images, per frame"},
+    {"features_degenerate", "Degenerate features per frame"},
+    {"features_outside_gate", "Measurable features outside the gate, per frame"},
 };
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};

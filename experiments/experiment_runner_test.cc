@@ -108,6 +108,26 @@ TEST(Runner, SameSeedForEverySweepValueAndMethod) {
   EXPECT_LT(low, high);
 }
 
+TEST(Runner, CountsWhyFramesWereLostOrTookANewReference) {
+  // The paper preset at 8 lines loses frames and takes new reference pairs; every one of them is
+  // counted under exactly one reason, and the features left out are counted per frame.
+  const ExperimentConfig c = TinyConfig();
+  const ExperimentRun run = RunExperiment(c, RunOptions());
+  double new_references = 0, left_out = 0;
+  for (const TrialResult& t : run.trials) {
+    const auto& m = t.metrics;
+    EXPECT_EQ(m[kLostFrames], m[kLostFewMeasurable] + m[kLostFewInsideGate] + m[kLostNoUpdate] + m[kLostNonFinite]);
+    EXPECT_EQ(m[kNewReferences], m[kNewRefFewFeatures] + m[kNewRefFeatureFraction]);
+    EXPECT_GE(m[kFeaturesUnmatched], 0.0);
+    EXPECT_GE(m[kFeaturesDegenerate], 0.0);
+    EXPECT_LE(m[kFeaturesUsed] + m[kFeaturesOutsideGate], m[kFeaturesAvailable]);
+    new_references += m[kNewReferences];
+    left_out += m[kFeaturesUnmatched] + m[kFeaturesOutsideGate];
+  }
+  EXPECT_GT(new_references, 0.0);
+  EXPECT_GT(left_out, 0.0);
+}
+
 TEST(Runner, RawResultsDoNotDependOnTheThreadCount) {
   const ExperimentConfig c = TinyConfig();
   DriverOptions one, two;

@@ -67,6 +67,7 @@ class StereoEkfTracker : public PoseTracker {
     Rigid3d predicted;
     // Features measurable, inside the gate at the prediction, and in the update.
     int valid = 0, gated = 0, used = 0;
+    int entering = 0;  // features entering the update (after the robust start)
     Rigid3d linearization;                // where the update starts
     bool blocks_at_linearization = true;  // features_ were evaluated at `linearization`
     double cost = std::numeric_limits<double>::infinity();  // posterior cost; infinity: no update
