@@ -7,7 +7,7 @@
 
 #include "common/json_reader.h"
 #include "common/script_runner.h"
-#include "experiments/machine_info.h"
+#include "common/machine_info.h"
 
 namespace slt {
 namespace {

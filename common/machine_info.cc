@@ -1,4 +1,4 @@
-#include "experiments/machine_info.h"
+#include "common/machine_info.h"
 
 #include <sys/utsname.h>
 
