@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/options.h"
 #include "dataset/stereo_sequence.h"
 #include "geometry/rigid3.h"
 
@@ -103,6 +104,9 @@ struct TrackerInfo {
   // The fewest stereo-matched lines the method can work with (the "minimum number" column of
   // the paper's Table 1).
   int minimum_lines = 2;
+  // Every option with its default, allowed values and doc (`track --list-options`), derived
+  // from the option schemas; unset: the tracker takes no options.
+  std::function<std::vector<OptionDoc>()> list_options;
 };
 
 // One frame of a run: the tracker's output and the wall time of its Track() call.

@@ -3,6 +3,7 @@
 //   track --method trifocal_line_ekf --input seq.json --output traj.tum [--config tracker.json]
 //         [--kitti traj.kitti] [--log frames.csv] [--print-config]
 //   track --list
+//   track --method NAME --list-options
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
@@ -18,7 +19,7 @@ int main(int argc, char** argv) {
   using namespace slt;
   CLI::App app{"Run a pose tracker over a stereo-lines/1 sequence and write its trajectory (TUM, camera-to-world)."};
   std::string method, input, output, config_path, kitti_path, log_path;
-  bool list = false, print_config = false;
+  bool list = false, print_config = false, list_options = false;
   app.add_option("--method,-m", method, "Tracker name (see --list)");
   app.add_option("--input,-i", input, "Observations, stereo-lines/1 JSON");
   app.add_option("--output,-o", output, "Trajectory to write, TUM format");
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, reason, features used and left out by reason, time per frame");
   app.add_flag("--list", list, "List the registered trackers and exit");
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
+  app.add_flag("--list-options", list_options, "List the tracker's options (key, default, allowed values, doc) and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -44,6 +46,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (method.empty()) throw CLI::RequiredError("--method");
+    if (list_options) {
+      const TrackerInfo& info = FindTracker(method);
+      std::cout << (info.list_options ? FormatOptionDocs(info.list_options()) : method + " takes no options\n");
+      return 0;
+    }
     const nlohmann::json options = config_path.empty() ? nlohmann::json::object() : ReadJsonFile(config_path);
     auto tracker = CreateTracker(method, options, config_path.empty() ? "--config" : config_path);
     if (print_config) {

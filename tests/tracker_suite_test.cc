@@ -162,6 +162,39 @@ TEST_P(TrackerSuite, SaysWhyFeaturesAreLeftOut) {
   EXPECT_EQ(after.features_used + after.features_outside_gate, after.features_available);
 }
 
+// The dotted keys of every leaf of `j`.
+void LeafKeys(const nlohmann::json& j, const std::string& prefix, std::set<std::string>* keys) {
+  if (!j.is_object()) {
+    keys->insert(prefix);
+    return;
+  }
+  for (const auto& [key, value] : j.items()) LeafKeys(value, prefix.empty() ? key : prefix + "." + key, keys);
+}
+
+TEST_P(TrackerSuite, ListsEveryOptionItTakes) {
+  // `track --list-options`: one documented line per option, the same keys as Options() echoes
+  // (plus "preset", which selects the defaults), each with the default Options() reports.
+  if (!info().list_options) GTEST_SKIP() << "takes no options";
+  const std::vector<OptionDoc> docs = info().list_options();
+  const nlohmann::json options = Make()->Options();
+  std::set<std::string> listed, echoed;
+  LeafKeys(options, "", &echoed);
+  for (const OptionDoc& d : docs) {
+    EXPECT_TRUE(listed.insert(d.key).second) << d.key << " listed twice";
+    EXPECT_FALSE(d.doc.empty()) << d.key;
+    EXPECT_FALSE(d.allowed.empty()) << d.key;
+    if (d.key == "preset") continue;
+    EXPECT_TRUE(echoed.count(d.key)) << d.key << " is listed but not in Options()";
+    if (echoed.count(d.key)) {
+      std::string pointer = "/" + d.key;
+      std::replace(pointer.begin(), pointer.end(), '.', '/');
+      EXPECT_EQ(d.value, options.at(nlohmann::json::json_pointer(pointer)).dump()) << d.key;
+    }
+  }
+  for (const std::string& key : echoed) EXPECT_TRUE(listed.count(key)) << key << " is in Options() but not listed";
+  EXPECT_NE(FormatOptionDocs(docs).find("filter."), std::string::npos);
+}
+
 TEST_P(TrackerSuite, DeterministicAcrossResets) {
   const SimulatedSequence sim = Simulated({{"frames", 30}, {"outliers", {{"rate", 0.1}}}});
   auto tracker = Make();

@@ -160,4 +160,15 @@ std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, 
   return std::make_unique<StereoEkfTracker>(filter, make_model(measurement), to_json(measurement));
 }
 
+// The listing of the options CreateStereoEkfTracker reads (TrackerInfo::list_options): "preset",
+// then "filter.*" and "measurement.*" with the default preset's values.
+template <typename MeasurementOptions>
+std::vector<OptionDoc> StereoEkfOptionDocs(const OptionSchema<MeasurementOptions>& measurement) {
+  std::vector<OptionDoc> docs = {{"preset", "default | paper", "\"default\"",
+                                  "\"paper\": the paper's filter and measurement, before the file's own values"}};
+  StereoEkfOptionsSchema().List(StereoEkfOptions(), "filter", &docs);
+  measurement.List(MeasurementOptions(), "measurement", &docs);
+  return docs;
+}
+
 }  // namespace slt
