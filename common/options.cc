@@ -4,6 +4,18 @@
 
 namespace slt {
 
+std::string FormatOptionDocs(const std::vector<OptionDoc>& docs) {
+  size_t key_width = 3, value_width = 7;
+  for (const OptionDoc& d : docs) {
+    key_width = std::max(key_width, d.key.size());
+    value_width = std::max(value_width, d.value.size());
+  }
+  auto pad = [](const std::string& s, size_t width) { return s + std::string(width - s.size() + 2, ' '); };
+  std::string out = pad("key", key_width) + pad("default", value_width) + "allowed: doc\n";
+  for (const OptionDoc& d : docs) out += pad(d.key, key_width) + pad(d.value, value_width) + d.allowed + ": " + d.doc + "\n";
+  return out;
+}
+
 std::string FormatOptionNumber(double value) {
   if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 1e15) {
     return std::to_string(static_cast<long long>(value));

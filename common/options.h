@@ -77,6 +77,14 @@ inline NumberRange AnyNumber() { return {}; }
 inline NumberRange AtLeast(double lo) { return InRange(lo, std::numeric_limits<double>::infinity(), "[]"); }
 inline NumberRange Positive() { return InRange(0.0, std::numeric_limits<double>::infinity(), "(]"); }
 
+// One line of an option listing (`track --list-options`): dotted key, allowed values, value
+// (JSON), one-line doc.
+struct OptionDoc {
+  std::string key, allowed, value, doc;
+};
+// The listing as aligned text, one option per line.
+std::string FormatOptionDocs(const std::vector<OptionDoc>& docs);
+
 template <typename E>
 using EnumNames = std::vector<std::pair<E, const char*>>;
 
@@ -111,6 +119,7 @@ class OptionSchema {
     std::function<std::string(const S&)> check;  // "" = valid, else the reason
     // Nested objects only.
     std::function<void(const S&, const std::string&, const std::string&)> validate_child;
+    std::function<void(const S&, const std::string&, std::vector<OptionDoc>*)> list_child;
   };
 
   // A number (int, unsigned or double) within `range`.
@@ -201,6 +210,9 @@ class OptionSchema {
     e.validate_child = [k, member, child](const S& s, const std::string& where, const std::string& path) {
       child->Validate(s.*member, where, path.empty() ? k : path + "." + k);
     };
+    e.list_child = [member, child](const S& s, const std::string& key, std::vector<OptionDoc>* out) {
+      child->List(s.*member, key, out);
+    };
     entries_.push_back(std::move(e));
     return std::move(*this);
   }
@@ -246,6 +258,19 @@ class OptionSchema {
     for (const auto& [key, check] : checks_) {
       const std::string reason = check(s);
       if (!reason.empty()) ThrowOptionError(where, path, key, reason);
+    }
+  }
+  // Every field with its value in `s` (a default-constructed S: the defaults), nested objects
+  // flattened to "key.field", keys prefixed with "<prefix>.".
+  void List(const S& s, const std::string& prefix, std::vector<OptionDoc>* out) const {
+    for (const Entry& e : entries_) {
+      if (e.key.empty()) continue;  // an OnRead step
+      const std::string key = prefix.empty() ? e.key : prefix + "." + e.key;
+      if (e.list_child) {
+        e.list_child(s, key, out);
+      } else {
+        out->push_back({key, e.allowed, e.write ? e.write(s).dump() : "", e.doc});
+      }
     }
   }
   const std::vector<Entry>& entries() const { return entries_; }

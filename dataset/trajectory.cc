@@ -74,7 +74,10 @@ class LineParser {
 };
 
 // Shortest text that reads back to the same double (C++17 to_chars without a precision).
+// Negative zero is written as 0: it reads back to the same pose, and "-0" in a file (an
+// identity rotation's quaternion, a camera on an axis) looks like a bug to every reader.
 void AppendNumber(double value, std::string* out) {
+  if (value == 0.0) value = 0.0;  // -0.0 == 0.0: replaces -0 by +0
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   out->append(buffer, result.ptr);

@@ -83,6 +83,27 @@ TEST(Trajectory, KittiRoundTripIsExactAndTimesFollowThePeriod) {
   std::remove(path.c_str());
 }
 
+TEST(Trajectory, WritersNeverWriteNegativeZero) {
+  // Negative zeros in times, translations and the rotation (a half turn about z, whose
+  // quaternion and matrix have zeros computed from negative values).
+  const Trajectory trajectory = {
+      {-0.0, Rigid3d(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.0, 1.0, -0.0))},
+      {1.0, Rigid3d::FromQuaternion(Eigen::Quaterniond(-0.0, -0.0, -0.0, -1.0), Eigen::Vector3d(-0.0, -0.0, -0.0))}};
+  for (const bool kitti : {false, true}) {
+    const std::string path = TempPath(kitti ? "zeros.kitti" : "zeros.tum");
+    kitti ? WriteKittiTrajectory(path, trajectory) : WriteTumTrajectory(path, trajectory);
+    std::ifstream in(path);
+    std::string token;
+    int zeros = 0;
+    while (in >> token) {
+      EXPECT_NE(token, "-0") << (kitti ? "KITTI" : "TUM");
+      zeros += token == "0";
+    }
+    std::remove(path.c_str());
+    EXPECT_GE(zeros, kitti ? 14 : 9) << "the zeros are written as 0";
+  }
+}
+
 TEST(Trajectory, ReadsHandWrittenTum) {
   const Trajectory t = ReadTumTrajectory(kTestData + "handwritten.tum");
   ASSERT_EQ(t.size(), 3u);

@@ -104,17 +104,59 @@ SweepAxis ReadAxis(const nlohmann::json& j, const std::string& where, const std:
   return axis;
 }
 
+const OptionSchema<ReportedValue>& ReportedValueSchema() {
+  using R = ReportedValue;
+  static const OptionSchema<R> schema =
+      OptionSchema<R>()
+          .Field("x", &R::x, AnyNumber(), "the value of the swept parameter (any number on a \"methods\" plot)")
+          .Field("rot_err_deg", &R::rot_err_deg, AnyNumber(), "reported rotation error, degrees (< 0: not reported)")
+          .Field("trans_err_m", &R::trans_err_m, AnyNumber(), "reported translation error, metres (< 0: not reported)")
+          .Field("upper_bound", &R::upper_bound, "the paper says \"less than\" this value")
+          .Field("label", &R::label, {}, "legend text")
+          .Check("rot_err_deg", [](const R& v) {
+            return v.rot_err_deg < 0.0 && v.trans_err_m < 0.0 ? "give rot_err_deg, trans_err_m or both (>= 0)" : "";
+          });
+  return schema;
+}
+
+void ReadPaperValues(JsonReader& r, PlotSpec* p) {
+  const nlohmann::json* paper = r.Find("paper");
+  if (!paper) return;
+  if (!paper->is_array()) r.Fail("paper", "expected an array of {\"x\", \"rot_err_deg\", \"trans_err_m\"} objects");
+  p->paper.clear();
+  for (size_t i = 0; i < paper->size(); ++i) {
+    JsonReader value_reader((*paper)[i], r.where(), Indexed(r.KeyPath("paper"), i));
+    if (!value_reader.Find("x")) value_reader.Fail("x", "required: the value of the swept parameter (any number on a \"methods\" plot)");
+    ReportedValue value;
+    ReportedValueSchema().ReadFields(value_reader, &value);
+    value_reader.RejectUnknownKeys();
+    ReportedValueSchema().Validate(value, value_reader.where(), value_reader.path());
+    p->paper.push_back(value);
+  }
+}
+
+nlohmann::json PaperValuesToJson(const PlotSpec& p) {
+  nlohmann::json paper = nlohmann::json::array();
+  for (const ReportedValue& v : p.paper) paper.push_back(ReportedValueSchema().ToJson(v));
+  return paper;
+}
+
 const OptionSchema<PlotSpec>& PlotSchema() {
   using P = PlotSpec;
   static const OptionSchema<P> schema =
       OptionSchema<P>()
-          .Field("kind", &P::kind, {"sweep", "grid", "curves", "trajectory"}, "what is drawn")
+          .Field("kind", &P::kind, {"sweep", "grid", "curves", "trajectory", "methods"}, "what is drawn")
           .Field("file", &P::file, {}, "PNG file name in the output directory")
           .Field("title", &P::title, {}, "figure title (default: the experiment's)")
+          .Field("caption", &P::caption, {}, "a line of text under the figure (optional)")
           .Field("yscale", &P::yscale, {"linear", "log"}, "error axis")
           .Field("band", &P::band, "shade the 95 % interval over trials")
+          .Field("statistic", &P::statistic, {"mean", "median", "both"},
+                 "sweep, grid, curves: the statistic over trials drawn as lines (both: median solid, mean dotted)")
           .Field("lines", &P::lines, {"methods", "sweep"}, "grid: one line per method or per second value")
           .Field("trial", &P::trial, AtLeast(0), "trajectory: the trial drawn")
+          .Custom("paper", ReadPaperValues, PaperValuesToJson, "array of {x, rot_err_deg, trans_err_m, upper_bound, label}",
+                  "sweep: the paper's values drawn as black triangles; methods: as dashed lines")
           .Check("file", [](const P& p) {
             return p.file.size() < 5 || p.file.substr(p.file.size() - 4) != ".png" || p.file.find('/') != std::string::npos
                        ? "expected a file name ending in .png (no directory)"
@@ -163,6 +205,9 @@ void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::strin
   if (plot.kind == "sweep" && c.sweep.size() != 1) fail("\"sweep\" plots need exactly one swept parameter");
   if (plot.kind == "grid" && c.sweep.size() != 2) fail("\"grid\" plots need two swept parameters");
   if (plot.kind == "curves" && !c.per_frame_curves) fail("\"curves\" plots need \"per_frame_curves\": true");
+  if (!plot.paper.empty() && plot.kind != "sweep" && plot.kind != "methods") {
+    ThrowOptionError(where, key, "paper", "the paper's values are drawn on \"sweep\" and \"methods\" plots only");
+  }
   if (plot.kind == "trajectory" && plot.trial >= c.save_trajectories) {
     ThrowOptionError(where, key, "trial", "trial " + std::to_string(plot.trial) +
                                               " is not saved (\"save_trajectories\" is " +

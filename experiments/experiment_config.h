@@ -31,17 +31,32 @@ struct MethodSpec {
   const std::string& Id() const { return label; }
 };
 
+// A value the paper reports, drawn on a sweep plot beside the reproduction (Figs. 4, 5).
+struct ReportedValue {
+  double x = 0.0;                 // where on the swept parameter
+  double rot_err_deg = -1.0;      // < 0: not reported
+  double trans_err_m = -1.0;
+  bool upper_bound = true;        // the paper says "less than" this value
+  std::string label = "paper";    // legend text
+};
+
 // One PNG drawn by scripts/plot_experiment.py from the CSV outputs.
 struct PlotSpec {
-  std::string kind;            // "sweep", "grid", "curves" or "trajectory"
+  std::string kind;            // "sweep", "grid", "curves", "trajectory" or "methods"
   std::string file;            // file name in the output directory, "*.png"
   std::string title;           // figure title (defaults to the experiment's title)
+  std::string caption;         // a line of text under the figure (optional)
   std::string yscale = "linear";  // "linear" or "log"
   bool band = false;           // sweep, grid: shade the 95 % interval over trials
+  // sweep, grid, curves: the statistic over trials drawn as lines: "mean", "median" or "both"
+  // (median solid, mean dotted: one failed trial moves the mean, not the median).
+  std::string statistic = "mean";
   // grid: "methods" = one panel per value of the second parameter, one line per method;
   // "sweep" = one panel per method, one line per value of the second parameter.
   std::string lines = "methods";
   int trial = 0;               // trajectory: the trial drawn (must be saved)
+  // sweep: the paper's values, drawn as black triangles; methods: as dashed lines (x unused).
+  std::vector<ReportedValue> paper;
 };
 
 // An expected ordering: `better` has a lower mean rotation and a lower mean translation error

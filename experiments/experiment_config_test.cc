@@ -75,6 +75,18 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(ErrorOf({{"metrics_frame", -2}}).find("key 'metrics_frame'"), std::string::npos);
   EXPECT_NE(ErrorOf({{"plots", {{{"kind", "sweep"}, {"file", "a.png"}}}}}).find("key 'plots[0].kind'"), std::string::npos);
   EXPECT_NE(ErrorOf({{"plots", {{{"kind", "pie"}, {"file", "a.png"}}}}}).find("key 'plots[0].kind'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"plots", {{{"kind", "methods"}, {"file", "a.png"}, {"statistic", "mode"}}}}})
+                .find("key 'plots[0].statistic': must be"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"plots", {{{"kind", "trajectory"}, {"file", "a.png"}, {"paper", {{{"x", 1}, {"rot_err_deg", 1}}}}}}}})
+                .find("key 'plots[0].paper': the paper's values are drawn on \"sweep\" and \"methods\" plots only"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"plots", {{{"kind", "methods"}, {"file", "a.png"}, {"paper", {{{"rot_err_deg", 1}}}}}}}})
+                .find("key 'plots[0].paper[0].x': required"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"plots", {{{"kind", "methods"}, {"file", "a.png"}, {"paper", {{{"x", 1}, {"rot", 1}}}}}}}})
+                .find("key 'plots[0].paper[0].rot': unknown key"),
+            std::string::npos);
   EXPECT_NE(ErrorOf({{"table_metrics", {"rot_err_deg", "speed"}}}).find("key 'table_metrics[1]': unknown metric 'speed'"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "nobody"}, {"worse", "yu_point_ekf"}}}}}).find("key 'expect_better[0].better'"),
@@ -102,6 +114,30 @@ TEST(ExperimentConfig, SimulationErrorsNameTheSimulationKey) {
   EXPECT_NE(ErrorOf({{"metrics_frame", 50}, {"sweep", {{{"parameter", "frames"}, {"values", {100, 40}}}}}})
                 .find("key 'metrics_frame'"),
             std::string::npos);
+}
+
+TEST(ExperimentConfig, PlotsKeepTheirCaptionStatisticAndThePapersValues) {
+  const json input = {{"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {0, 2.5}}}}},
+                      {"plots",
+                       {{{"kind", "sweep"},
+                         {"file", "a.png"},
+                         {"caption", "a line"},
+                         {"statistic", "both"},
+                         {"paper", {{{"x", 2.5}, {"rot_err_deg", 0.4}, {"trans_err_m", 0.01}}}}},
+                        {{"kind", "methods"}, {"file", "b.png"}}}}};
+  const ExperimentConfig c = ExperimentConfigFromJson(input, "cfg.json");
+  ASSERT_EQ(c.plots.size(), 2u);
+  EXPECT_EQ(c.plots[0].caption, "a line");
+  EXPECT_EQ(c.plots[0].statistic, "both");
+  ASSERT_EQ(c.plots[0].paper.size(), 1u);
+  EXPECT_EQ(c.plots[0].paper[0].x, 2.5);
+  EXPECT_EQ(c.plots[0].paper[0].rot_err_deg, 0.4);
+  EXPECT_EQ(c.plots[0].paper[0].trans_err_m, 0.01);
+  EXPECT_TRUE(c.plots[0].paper[0].upper_bound);
+  EXPECT_EQ(c.plots[0].paper[0].label, "paper");
+  EXPECT_EQ(c.plots[1].statistic, "mean");
+  const json resolved = ExperimentConfigToJson(c);
+  EXPECT_EQ(ExperimentConfigToJson(ExperimentConfigFromJson(resolved, "config.resolved.json")), resolved);
 }
 
 TEST(ExperimentConfig, ResolvedConfigReadsBackToTheSameConfig) {

@@ -1,14 +1,13 @@
 #include "experiments/experiment_driver.h"
 
-#include <sys/wait.h>
-
+#include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
 #include "common/json_reader.h"
-#include "experiments/machine_info.h"
+#include "common/script_runner.h"
+#include "common/machine_info.h"
 
 namespace slt {
 namespace {
@@ -95,27 +94,34 @@ std::string FindConfigFile(const std::string& name) {
   for (const std::string& c : candidates) {
     if (fs::is_regular_file(c, error)) return c;
   }
-  std::string looked;
+  std::string looked, available;
   for (const std::string& c : candidates) looked += (looked.empty() ? "" : ", ") + c;
-  throw std::runtime_error("config '" + name + "' not found (looked for " + looked + ")");
+  for (const std::string& c : AvailableConfigs()) available += (available.empty() ? "" : ", ") + c;
+  throw std::runtime_error("config '" + name + "' not found (looked for " + looked + "); available: " +
+                           (available.empty() ? "none found" : available));
+}
+
+std::vector<std::string> AvailableConfigs() {
+  const fs::path root = fs::path(SourceDir()) / "experiments/configs";
+  std::vector<std::string> names;
+  std::error_code error;
+  for (fs::recursive_directory_iterator it(root, error), end; !error && it != end; it.increment(error)) {
+    if (it->is_regular_file(error) && it->path().extension() == ".json") {
+      names.push_back(it->path().lexically_relative(root).replace_extension().generic_string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 void RunPlotScript(const std::string& dir, bool quiet) {
-  std::string script = Join(SourceDir(), "scripts/plot_experiment.py");
-  std::error_code error;
-  if (!fs::is_regular_file(script, error)) script = "scripts/plot_experiment.py";
-  if (!fs::is_regular_file(script, error)) {
-    throw std::runtime_error("plotting: scripts/plot_experiment.py not found (results are written; use --no-plots)");
-  }
-  const char* env = std::getenv("SLT_PYTHON");
-  const std::string python = env != nullptr && *env != '\0' ? env : "/usr/bin/python3";
-  const std::string command = ShellQuote(python) + " " + ShellQuote(script) + " " + ShellQuote(dir) +
-                              (quiet ? " --quiet" : "");
-  const int status = std::system(command.c_str());
-  if (status != 0) {
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : status;
-    throw std::runtime_error("plotting failed (" + command + " exited with " + std::to_string(code) +
-                             "); the results are written, only the plots are missing");
+  std::vector<std::string> args = {dir};
+  if (quiet) args.push_back("--quiet");
+  try {
+    RunPythonScript("scripts/plot_experiment.py", args);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("plotting failed (") + e.what() +
+                             "); the results are written, only the plots are missing (use --no-plots to skip them)");
   }
 }
 

@@ -32,11 +32,15 @@ std::string DefaultOutputDir(const std::string& name);
 
 // Finds a config: `name` as given (relative to the current directory), then in
 // ./experiments/configs/ and <source tree>/experiments/configs/, each with and without ".json".
-// Throws std::runtime_error listing where it looked.
+// Throws std::runtime_error listing where it looked and the available configs.
 std::string FindConfigFile(const std::string& name);
 
-// Runs `<python> scripts/plot_experiment.py DIR` (python: $SLT_PYTHON, else /usr/bin/python3,
-// which has Debian's matplotlib). Throws std::runtime_error when the script fails.
+// The configs of <source tree>/experiments/configs/ by the names FindConfigFile takes, sorted:
+// "ablation", ..., "ci/noise_sweep_ci" (empty when the source tree is gone).
+std::vector<std::string> AvailableConfigs();
+
+// Runs scripts/plot_experiment.py DIR with RunPythonScript (common/script_runner.h). Throws
+// std::runtime_error when the script fails.
 void RunPlotScript(const std::string& dir, bool quiet = false);
 
 }  // namespace slt

@@ -28,6 +28,8 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"final_trans_err_m", "Final translation error (m)"},
     {"ate_trans_m", "ATE translation RMSE (m)"},
     {"ate_rot_deg", "ATE rotation RMSE (deg)"},
+    {"max_trans_err_m", "Largest translation error (m)"},
+    {"max_rot_err_deg", "Largest rotation error (deg)"},
     {"rpe_trans_m", "RPE translation RMSE (m)"},
     {"rpe_rot_deg", "RPE rotation RMSE (deg)"},
     {"path_length_m", "Path length (m)"},
@@ -39,6 +41,15 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"features_available", "Features available per frame"},
     {"new_references", "New reference pairs"},
     {"lost_frames", "Lost frames"},
+    {"new_ref_few_features", "New reference pairs: fewer than min_features left"},
+    {"new_ref_feature_fraction", "New reference pairs: below min_feature_fraction"},
+    {"lost_few_measurable", "Lost frames: too few measurable features"},
+    {"lost_few_inside_gate", "Lost frames: too few features inside the gate"},
+    {"lost_no_update", "Lost frames: no update solution"},
+    {"lost_non_finite", "Lost frames: non-finite state"},
+    {"features_unmatched", "Reference features not matched in both images, per frame"},
+    {"features_degenerate", "Degenerate features per frame"},
+    {"features_outside_gate", "Measurable features outside the gate, per frame"},
 };
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};

@@ -94,12 +94,18 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   std::vector<double> times_us;
   times_us.reserve(run.size());
   double features_used = 0.0, features_available = 0.0;
+  double unmatched = 0.0, degenerate = 0.0, outside_gate = 0.0;
   int new_references = 0, lost = 0;
+  int by_reason[kNumStatusReasons] = {};
   for (size_t k = 0; k < run.size(); ++k) {
     const TrackerOutput& out = run[k].output;
     times_us.push_back(run[k].time_us);
     features_used += out.features_used;
     features_available += out.features_available;
+    unmatched += out.features_unmatched;
+    degenerate += out.features_degenerate;
+    outside_gate += out.features_outside_gate;
+    ++by_reason[static_cast<int>(out.reason)];
     if (k > 0 && out.status == TrackingStatus::kNewReference) ++new_references;
     if (out.status == TrackingStatus::kLost) ++lost;
     r.finite = r.finite && Finite(out.cam_from_world);
@@ -117,6 +123,16 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   m[kFeaturesAvailable] = features_available / n;
   m[kNewReferences] = new_references;
   m[kLostFrames] = lost;
+  auto frames_with = [&](StatusReason reason) { return by_reason[static_cast<int>(reason)]; };
+  m[kNewRefFewFeatures] = frames_with(StatusReason::kFewFeaturesLeft);
+  m[kNewRefFeatureFraction] = frames_with(StatusReason::kFeatureFractionLeft);
+  m[kLostFewMeasurable] = frames_with(StatusReason::kFewMeasurable);
+  m[kLostFewInsideGate] = frames_with(StatusReason::kFewInsideGate);
+  m[kLostNoUpdate] = frames_with(StatusReason::kNoUpdate);
+  m[kLostNonFinite] = frames_with(StatusReason::kNonFinite);
+  m[kFeaturesUnmatched] = unmatched / n;
+  m[kFeaturesDegenerate] = degenerate / n;
+  m[kFeaturesOutsideGate] = outside_gate / n;
   m[kPathLengthM] = PathLength(sim.ground_truth);
   if (r.finite && !estimate.empty()) {
     EvaluationOptions options;  // alignment none: both worlds are the first left camera
@@ -128,6 +144,8 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
     m[kFinalTransErrM] = errors.Final().trans_err_m;
     m[kAteTransM] = errors.ate_trans_m.rmse;
     m[kAteRotDeg] = errors.ate_rot_deg.rmse;
+    m[kMaxTransErrM] = errors.ate_trans_m.max;
+    m[kMaxRotErrDeg] = errors.ate_rot_deg.max;
     if (errors.rpe_trans_m.count > 0) {
       m[kRpeTransM] = errors.rpe_trans_m.rmse;
       m[kRpeRotDeg] = errors.rpe_rot_deg.rmse;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "common/json_reader.h"
@@ -107,6 +108,26 @@ TEST(Runner, SameSeedForEverySweepValueAndMethod) {
   EXPECT_LT(low, high);
 }
 
+TEST(Runner, CountsWhyFramesWereLostOrTookANewReference) {
+  // The paper preset at 8 lines loses frames and takes new reference pairs; every one of them is
+  // counted under exactly one reason, and the features left out are counted per frame.
+  const ExperimentConfig c = TinyConfig();
+  const ExperimentRun run = RunExperiment(c, RunOptions());
+  double new_references = 0, left_out = 0;
+  for (const TrialResult& t : run.trials) {
+    const auto& m = t.metrics;
+    EXPECT_EQ(m[kLostFrames], m[kLostFewMeasurable] + m[kLostFewInsideGate] + m[kLostNoUpdate] + m[kLostNonFinite]);
+    EXPECT_EQ(m[kNewReferences], m[kNewRefFewFeatures] + m[kNewRefFeatureFraction]);
+    EXPECT_GE(m[kFeaturesUnmatched], 0.0);
+    EXPECT_GE(m[kFeaturesDegenerate], 0.0);
+    EXPECT_LE(m[kFeaturesUsed] + m[kFeaturesOutsideGate], m[kFeaturesAvailable]);
+    new_references += m[kNewReferences];
+    left_out += m[kFeaturesUnmatched] + m[kFeaturesOutsideGate];
+  }
+  EXPECT_GT(new_references, 0.0);
+  EXPECT_GT(left_out, 0.0);
+}
+
 TEST(Runner, RawResultsDoNotDependOnTheThreadCount) {
   const ExperimentConfig c = TinyConfig();
   DriverOptions one, two;
@@ -195,7 +216,18 @@ TEST(Runner, FindsConfigsByName) {
   const std::string path = FindConfigFile("noise_sweep");
   EXPECT_NE(path.find("experiments/configs/noise_sweep.json"), std::string::npos);
   EXPECT_EQ(FindConfigFile("noise_sweep.json"), path);
-  EXPECT_THROW(FindConfigFile("no_such_experiment"), std::runtime_error);
+  try {
+    FindConfigFile("no_such_experiment");
+    FAIL() << "found a config that does not exist";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("; available: ablation, ablation_robust, ci/error_vs_frame_ci, "),
+              std::string::npos) << e.what();
+  }
+  const std::vector<std::string> configs = AvailableConfigs();
+  EXPECT_TRUE(std::is_sorted(configs.begin(), configs.end()));
+  for (const char* name : {"noise_sweep", "loop", "ci/loop_ci"}) {
+    EXPECT_NE(std::find(configs.begin(), configs.end(), name), configs.end()) << name;
+  }
 }
 
 }  // namespace

@@ -10,49 +10,17 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "common/json_reader.h"
+#include "common/progress_bar.h"
 #include "experiments/experiment_driver.h"
 #include "experiments/regression.h"
 
 namespace {
-
-// A progress bar with an ETA on stderr, redrawn at most every 0.2 s.
-class ProgressBar {
- public:
-  void Update(size_t done, size_t total) {
-    const auto now = std::chrono::steady_clock::now();
-    if (done < total && now - last_draw_ < std::chrono::milliseconds(200)) return;
-    last_draw_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double fraction = total ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
-    const int width = 30;
-    const int filled = static_cast<int>(fraction * width);
-    std::string bar(static_cast<size_t>(filled), '#');
-    bar.resize(width, '.');
-    std::string eta = "--:--";
-    if (done > 0) eta = Clock(elapsed / static_cast<double>(done) * static_cast<double>(total - done));
-    std::fprintf(stderr, "\r[%s] %zu/%zu %5.1f%%  elapsed %s  ETA %s ", bar.c_str(), done, total, 100.0 * fraction,
-                 Clock(elapsed).c_str(), eta.c_str());
-    if (done == total) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  static std::string Clock(double seconds) {
-    const long s = static_cast<long>(seconds + 0.5);
-    char buffer[32];
-    std::snprintf(buffer, sizeof(buffer), "%ld:%02ld", s / 60, s % 60);
-    return buffer;
-  }
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_draw_{};
-};
 
 // The expected orderings (config "expect_better"): a note on stderr when one does not hold. Not
 // an error: experiments_regression_test is the check.
@@ -78,6 +46,9 @@ int main(int argc, char** argv) {
   app.add_option("--merge", merge_dirs, "Combine these shard output directories into one result");
   app.add_flag("--no-plots", no_plots, "Do not draw the PNG plots");
   app.add_flag("--quiet,-q", quiet, "No progress bar, no final message");
+  std::string configs;
+  for (const std::string& name : AvailableConfigs()) configs += "\n  " + name;
+  app.footer("CONFIG names in experiments/configs/ (docs/experiments.md):" + (configs.empty() ? std::string(" none found") : configs));
   Shard shard;
   try {
     app.parse(argc, argv);

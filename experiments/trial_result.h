@@ -20,6 +20,8 @@ enum TrialMetric {
   kFinalTransErrM,
   kAteTransM,          // ATE RMSE over all frames
   kAteRotDeg,
+  kMaxTransErrM,       // largest translation error over all frames (the ATE's max)
+  kMaxRotErrDeg,       // largest rotation error over all frames
   kRpeTransM,          // RPE RMSE, delta = 1 frame
   kRpeRotDeg,
   kPathLengthM,        // length of the ground-truth path
@@ -31,6 +33,18 @@ enum TrialMetric {
   kFeaturesAvailable,  // mean over frames of TrackerOutput::features_available
   kNewReferences,       // frames after the first with status kNewReference (new reference pairs)
   kLostFrames,         // frames with status kLost
+  // Frames by TrackerOutput::reason (methods/pose_tracker.h): why a frame took a new reference
+  // pair (the first frame not counted) or was lost.
+  kNewRefFewFeatures,      // fewer reference features left than min_features
+  kNewRefFeatureFraction,  // fewer left than min_feature_fraction of the reference's
+  kLostFewMeasurable,      // fewer than two features matched in both images and measurable
+  kLostFewInsideGate,      // fewer than two measurable features inside the gate
+  kLostNoUpdate,           // the update found no solution
+  kLostNonFinite,          // the state became non-finite
+  // Mean over frames of the reference features left out of the update, by reason.
+  kFeaturesUnmatched,      // not observed in both images
+  kFeaturesDegenerate,     // no usable measurement
+  kFeaturesOutsideGate,    // measurable, not in the update
   kNumTrialMetrics
 };
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/options.h"
 #include "dataset/stereo_sequence.h"
 #include "geometry/rigid3.h"
 
@@ -36,11 +37,45 @@ inline const char* TrackingStatusName(TrackingStatus status) {
   return "unknown";
 }
 
+// Why a frame has the status it has (kNone: tracking normally).
+enum class StatusReason {
+  kNone,
+  kFirstFrame,          // new reference: the first frame defines the world
+  kFewFeaturesLeft,     // new reference: fewer reference features left than min_features
+  kFeatureFractionLeft, // new reference: fewer left than min_feature_fraction of the reference's
+  kFewMeasurable,       // lost: fewer than two features matched in both images and measurable
+  kFewInsideGate,       // lost: fewer than two measurable features inside the gate (eq. 20)
+  kNoUpdate,            // lost: the update found no solution or re-gating left fewer than two
+  kNonFinite,           // lost: the state became non-finite; restarted from the last good pose
+};
+inline constexpr int kNumStatusReasons = 8;
+
+inline const char* StatusReasonName(StatusReason reason) {
+  switch (reason) {
+    case StatusReason::kNone: return "";
+    case StatusReason::kFirstFrame: return "first_frame";
+    case StatusReason::kFewFeaturesLeft: return "few_features_left";
+    case StatusReason::kFeatureFractionLeft: return "feature_fraction_left";
+    case StatusReason::kFewMeasurable: return "few_measurable";
+    case StatusReason::kFewInsideGate: return "few_inside_gate";
+    case StatusReason::kNoUpdate: return "no_update";
+    case StatusReason::kNonFinite: return "non_finite";
+  }
+  return "unknown";
+}
+
 struct TrackerOutput {
   Rigid3d cam_from_world;  // left camera at this frame; world = left camera at the first frame
   TrackingStatus status = TrackingStatus::kTracking;
+  StatusReason reason = StatusReason::kNone;  // a lost frame's reason wins over a new reference's
   int features_available = 0;  // features with a usable measurement this frame
   int features_used = 0;       // features that passed the gate and entered the update
+  // The reference pair's features left out of this frame's update, by reason (the trackers that
+  // have a reference pair; with features_used they add up to the reference's feature count):
+  int features_unmatched = 0;     // not observed (stereo-matched) in both images of this pair
+  int features_degenerate = 0;    // observed, but no usable measurement (degenerate geometry)
+  int features_outside_gate = 0;  // measurable, but outside the validation gate (eq. 20), the
+                                  // robust start's consensus, or re-gated at the solution
 };
 
 class PoseTracker {
@@ -74,6 +109,9 @@ struct TrackerInfo {
   // hold: the shared suite and bench_table1 give them paper scenes with part of the lines on
   // cuboids (scene.paper.cuboid_fraction) instead.
   bool needs_primitive_configurations = false;
+  // Every option with its default, allowed values and doc (`track --list-options`), derived
+  // from the option schemas; unset: the tracker takes no options.
+  std::function<std::vector<OptionDoc>()> list_options;
 };
 
 // One frame of a run: the tracker's output and the wall time of its Track() call.

@@ -3,6 +3,7 @@
 //   track --method trifocal_line_ekf --input seq.json --output traj.tum [--config tracker.json]
 //         [--kitti traj.kitti] [--log frames.csv] [--print-config]
 //   track --list
+//   track --method NAME --list-options
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
@@ -18,15 +19,16 @@ int main(int argc, char** argv) {
   using namespace slt;
   CLI::App app{"Run a pose tracker over a stereo-lines/1 sequence and write its trajectory (TUM, camera-to-world)."};
   std::string method, input, output, config_path, kitti_path, log_path;
-  bool list = false, print_config = false;
+  bool list = false, print_config = false, list_options = false;
   app.add_option("--method,-m", method, "Tracker name (see --list)");
   app.add_option("--input,-i", input, "Observations, stereo-lines/1 JSON");
   app.add_option("--output,-o", output, "Trajectory to write, TUM format");
   app.add_option("--config,-c", config_path, "Tracker options, JSON (missing keys keep their defaults)");
   app.add_option("--kitti", kitti_path, "Also write the trajectory in KITTI format");
-  app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, features, time per frame");
+  app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, reason, features used and left out by reason, time per frame");
   app.add_flag("--list", list, "List the registered trackers and exit");
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
+  app.add_flag("--list-options", list_options, "List the tracker's options (key, default, allowed values, doc) and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -44,6 +46,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (method.empty()) throw CLI::RequiredError("--method");
+    if (list_options) {
+      const TrackerInfo& info = FindTracker(method);
+      std::cout << (info.list_options ? FormatOptionDocs(info.list_options()) : method + " takes no options\n");
+      return 0;
+    }
     const nlohmann::json options = config_path.empty() ? nlohmann::json::object() : ReadJsonFile(config_path);
     auto tracker = CreateTracker(method, options, config_path.empty() ? "--config" : config_path);
     if (print_config) {
@@ -58,17 +65,25 @@ int main(int argc, char** argv) {
     Trajectory trajectory;
     trajectory.reserve(sequence.frames.size());
     std::ostringstream log;
-    log << "frame,time,status,features_available,features_used,time_us\n";
+    log << "frame,time,status,reason,features_available,features_used,features_unmatched,features_degenerate,"
+           "features_outside_gate,time_us\n";
     int counts[3] = {0, 0, 0};
+    int by_reason[kNumStatusReasons] = {};
+    long unmatched = 0, degenerate = 0, outside_gate = 0;
     double total_us = 0.0;
     for (size_t k = 0; k < run.size(); ++k) {
       const TrackerOutput& out = run[k].output;
       const double time = sequence.frames[k].time;
       total_us += run[k].time_us;
       ++counts[static_cast<int>(out.status)];
+      ++by_reason[static_cast<int>(out.reason)];
+      unmatched += out.features_unmatched;
+      degenerate += out.features_degenerate;
+      outside_gate += out.features_outside_gate;
       trajectory.push_back({time, out.cam_from_world.Inverse()});
-      log << k << "," << time << "," << TrackingStatusName(out.status) << "," << out.features_available << ","
-          << out.features_used << "," << run[k].time_us << "\n";
+      log << k << "," << time << "," << TrackingStatusName(out.status) << "," << StatusReasonName(out.reason) << ","
+          << out.features_available << "," << out.features_used << "," << out.features_unmatched << ","
+          << out.features_degenerate << "," << out.features_outside_gate << "," << run[k].time_us << "\n";
     }
     WriteTumTrajectory(output, trajectory);
     if (!kitti_path.empty()) WriteKittiTrajectory(kitti_path, trajectory);
@@ -76,6 +91,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost), %.1f us per frame\n",
                  method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2],
                  sequence.frames.empty() ? 0.0 : total_us / sequence.frames.size());
+    // Why: frames by reason (the first frame's aside), then the features left out.
+    std::string reasons;
+    for (int r = static_cast<int>(StatusReason::kFewFeaturesLeft); r < kNumStatusReasons; ++r) {
+      if (by_reason[r] == 0) continue;
+      reasons += std::string(reasons.empty() ? "" : ", ") + StatusReasonName(static_cast<StatusReason>(r)) + " " +
+                 std::to_string(by_reason[r]);
+    }
+    std::fprintf(stderr,
+                 "track: reasons: %s; features left out over all frames: %ld not matched in both images, "
+                 "%ld degenerate, %ld outside the gate\n",
+                 reasons.empty() ? "none" : reasons.c_str(), unmatched, degenerate, outside_gate);
     return 0;
   } catch (const CLI::Error& e) {
     std::fprintf(stderr, "track: error: %s\n", e.what());

@@ -4,6 +4,7 @@
 //
 // DIR/seq.json              observations, stereo-lines/1 (the rig is the tracker's rig)
 // DIR/gt.tum                ground truth, world_from_cam of the left camera, TUM
+// DIR/scene.csv             the scene's 3-D segments (id,x1,y1,z1,x2,y2,z2, world frame, m)
 // DIR/config.resolved.json  the config with every default filled in (and --seed applied)
 // DIR/mav0/...              with --images: the rendered stereo images in EuRoC's ASL layout
 //                           (docs/formats.md, docs/rendering.md)
@@ -22,6 +23,24 @@
 #include "dataset/trajectory.h"
 #include "render/sequence_renderer.h"
 #include "simulator/simulator.h"
+
+namespace {
+
+// The scene as CSV, one segment per line (docs/formats.md): what scripts/plot_trajectory.py
+// --scene draws. Numbers in the shortest form that reads back to the same double.
+std::string SceneCsv(const std::vector<slt::Line3d>& lines) {
+  std::string csv = "id,x1,y1,z1,x2,y2,z2\n";
+  for (size_t id = 0; id < lines.size(); ++id) {
+    csv += std::to_string(id);
+    for (const Eigen::Vector3d* end : {&lines[id].p, &lines[id].q}) {
+      for (int i = 0; i < 3; ++i) csv += "," + nlohmann::json((*end)(i)).dump();
+    }
+    csv += "\n";
+  }
+  return csv;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace slt;
@@ -82,6 +101,7 @@ int main(int argc, char** argv) {
     if (error) throw std::runtime_error(out_dir + ": cannot create directory (" + error.message() + ")");
     WriteStereoLines((dir / "seq.json").string(), result.sequence);
     WriteTumTrajectory((dir / "gt.tum").string(), result.ground_truth);
+    WriteTextFileAtomically((dir / "scene.csv").string(), SceneCsv(result.lines));
     if (images) {
       // One OpenCV thread per render thread: the frames are the parallel work.
       cv::setNumThreads(1);

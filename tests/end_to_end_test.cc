@@ -64,7 +64,7 @@ TEST_F(EndToEnd, SimulateTrackEvaluate) {
             " --kitti " + Path("run/" + method + ".kitti") + " --log " + Path("run/" + method + ".csv"));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(ReadTumTrajectory(traj).size(), 50u);
-    r = RunCommand(Bin("evaluate") + " --gt " + Path("run/gt.tum") + " --est " + traj + " --out " +
+    r = RunCommand(Bin("evaluate") + " --gt " + Path("run/gt.tum") + " --est " + traj + " --json " +
             Path("run/" + method + ".metrics.json"));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const nlohmann::json metrics = ReadJsonFile(Path("run/" + method + ".metrics.json"));
@@ -94,6 +94,82 @@ TEST_F(EndToEnd, TracksAHandWrittenSequence) {
     EXPECT_TRUE(p.world_from_cam.translation.allFinite());
     EXPECT_TRUE(p.world_from_cam.rotation.allFinite());
   }
+}
+
+// evaluate as a person uses it: the table by default, positional files, evo's alignment flags,
+// JSON on request, the association check and the plot.
+TEST_F(EndToEnd, EvaluatePrintsATableAndWarnsWhenTheRunsDoNotMatch) {
+  {
+    std::ofstream(Path("sim.json")) << R"({"frames": 30, "noise": {"endpoint_px": 1.0}})";
+  }
+  Result r = RunCommand(Bin("simulate") + " " + Path("sim.json") + " --out " + Path("run"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunCommand(Bin("track") + " --method trifocal_line_ekf --input " + Path("run/seq.json") + " --output " +
+                 Path("est.tum"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  r = RunCommand(Bin("evaluate") + " " + Path("run/gt.tum") + " " + Path("est.tum"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("associated 30 of 30 estimate and 30 of 30 ground-truth poses"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("metric                       rmse       mean     median        std        min        max\n"
+                          "ATE translation (m) "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find('{'), std::string::npos) << "no JSON by default: " << r.output;
+  EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 10) << r.output;
+
+  // evo's -as: Sim(3) alignment; --format json prints what --json writes.
+  r = RunCommand(Bin("evaluate") + " -as --format json --json " + Path("m.json") + " " + Path("run/gt.tum") + " " +
+                 Path("est.tum"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json printed = nlohmann::json::parse(r.output);
+  EXPECT_EQ(printed.at("alignment"), "sim3");
+  EXPECT_EQ(printed, ReadJsonFile(Path("m.json")));
+  r = RunCommand(Bin("evaluate") + " -a --gt " + Path("run/gt.tum") + " --est " + Path("est.tum"));
+  EXPECT_NE(r.output.find("; alignment se3\n"), std::string::npos) << r.output;
+  r = RunCommand(Bin("evaluate") + " -s " + Path("run/gt.tum") + " " + Path("est.tum"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+
+  // A ground truth of 10 poses against the estimate's 30: a warning, an error with --strict
+  // (and then no output file).
+  {
+    std::ifstream in(Path("run/gt.tum"));
+    std::ofstream out(Path("short_gt.tum"));
+    std::string line;
+    for (int k = 0; k < 11 && std::getline(in, line); ++k) out << line << "\n";  // header + 10 poses
+  }
+  r = RunCommand("(" + Bin("evaluate") + " " + Path("short_gt.tum") + " " + Path("est.tum") + " > /dev/null)");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("evaluate: warning: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("only 10 of 30 estimate poses (33.3 %)"), std::string::npos) << r.output;
+  r = RunCommand(Bin("evaluate") + " --strict --json " + Path("strict.json") + " " + Path("short_gt.tum") + " " +
+                 Path("est.tum"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.output.rfind("evaluate: error: ", 0), 0u) << r.output;
+  EXPECT_FALSE(fs::exists(Path("strict.json")));
+  r = RunCommand(Bin("evaluate") + " --strict " + Path("run/gt.tum") + " " + Path("est.tum"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST_F(EndToEnd, EvaluatePlotsAndSimulateWritesItsScene) {
+  Result r = RunCommand("echo '{\"frames\": 20}' | " + Bin("simulate") + " - --out " + Path("run"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The scene: a header and the paper protocol's 40 segments.
+  std::ifstream scene(Path("run/scene.csv"));
+  std::string line;
+  ASSERT_TRUE(std::getline(scene, line));
+  EXPECT_EQ(line, "id,x1,y1,z1,x2,y2,z2");
+  int segments = 0;
+  while (std::getline(scene, line)) ++segments;
+  EXPECT_EQ(segments, 40);
+
+  r = RunCommand(Bin("evaluate") + " " + Path("run/gt.tum") + " " + Path("run/gt.tum") + " --plot " + Path("p.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream png(Path("p.png"), std::ios::binary);
+  char magic[4] = {};
+  png.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  r = RunCommand(Bin("evaluate") + " " + Path("run/gt.tum") + " " + Path("run/gt.tum") + " --plot " + Path("p.jpg"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
 void ExpectOneErrorLine(const std::string& output) {

@@ -197,6 +197,7 @@ TEST(FirstUpdate, TwoFeaturesThatDisagreeLeaveThePrediction) {
     const TrackerOutput out = TrackFirstUpdate(&tracker);
     EXPECT_EQ(out.status, c.expected);
     if (c.expected == TrackingStatus::kLost) {
+      EXPECT_EQ(out.reason, StatusReason::kNoUpdate);  // both entered the update
       EXPECT_EQ(out.features_used, 0);
       EXPECT_EQ(tracker.counters().updates, 0);
       EXPECT_LT(LogSE3(tracker.filter().cam_from_ref()).norm(), 1e-12);  // the prediction: M = I
@@ -231,7 +232,10 @@ TEST(FirstUpdate, ANewReferenceOnAFrameWithoutUpdateIsStillLost) {
   StereoEkfTracker tracker(PaperFilter(false), std::move(model), nlohmann::json::object());
   const TrackerOutput out = TrackFirstUpdate(&tracker);
   EXPECT_EQ(out.status, TrackingStatus::kLost);
+  EXPECT_EQ(out.reason, StatusReason::kFewInsideGate);
   EXPECT_EQ(out.features_used, 0);
+  EXPECT_EQ(out.features_outside_gate, 3);
+  EXPECT_EQ(out.features_degenerate, 0);
   EXPECT_EQ(tracker.counters().new_references, 1);
   EXPECT_EQ(tracker.counters().lost_frames, 1);
 }

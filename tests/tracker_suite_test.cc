@@ -2,7 +2,10 @@
 // to methods/registry.cc.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include "common/json_changes.h"
@@ -118,6 +121,8 @@ TEST_P(TrackerSuite, LosingEveryFeatureHoldsThePose) {
     const TrackerOutput& o = run.outputs[k];
     ASSERT_TRUE(IsFinite(o.cam_from_world)) << "frame " << k;
     EXPECT_EQ(o.status, TrackingStatus::kLost) << "frame " << k;
+    EXPECT_EQ(o.reason, StatusReason::kFewMeasurable) << "frame " << k;
+    EXPECT_GT(o.features_unmatched, 0) << "frame " << k << ": the reference's features are not seen";
     // Measured for both EKFs: 11.8 mm / 1.66 deg in all (the velocity halves every frame).
     const Rigid3d moved = o.cam_from_world * last_seen.Inverse();
     EXPECT_LT(moved.translation.norm(), 0.015) << "frame " << k;
@@ -129,6 +134,74 @@ TEST_P(TrackerSuite, LosingEveryFeatureHoldsThePose) {
       EXPECT_LT(Eigen::AngleAxisd(step.rotation).angle(), 1e-6) << "frame " << k;
     }
   }
+}
+
+TEST_P(TrackerSuite, SaysWhyFeaturesAreLeftOut) {
+  // Frame 10 loses the right-image observations of 5 lines seen in both images of every frame
+  // before (so in the reference pair): they are reported as not matched in both images, and the
+  // first frame's status as the first frame's.
+  if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker: no reference pair";
+  SimulatedSequence sim = Simulated({{"frames", 12}, {"noise", {{"endpoint_px", 1.0}}}});
+  std::map<std::int64_t, int> stereo_frames;
+  for (int k = 0; k <= 10; ++k) {
+    std::set<std::int64_t> left;
+    for (const LineObservation& o : sim.sequence.frames[k].left) left.insert(o.id);
+    for (const LineObservation& o : sim.sequence.frames[k].right) stereo_frames[o.id] += left.count(o.id);
+  }
+  std::set<std::int64_t> removed;
+  for (const auto& [id, frames] : stereo_frames) {
+    if (frames == 11 && removed.size() < 5) removed.insert(id);
+  }
+  ASSERT_EQ(removed.size(), 5u);
+  std::vector<LineObservation>& right = sim.sequence.frames[10].right;
+  right.erase(std::remove_if(right.begin(), right.end(), [&](const LineObservation& o) { return removed.count(o.id) > 0; }),
+              right.end());
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  EXPECT_EQ(run.outputs[0].reason, StatusReason::kFirstFrame);
+  const TrackerOutput& before = run.outputs[9];
+  const TrackerOutput& after = run.outputs[10];
+  ASSERT_EQ(after.status, TrackingStatus::kTracking);
+  ASSERT_EQ(before.status, TrackingStatus::kTracking);
+  EXPECT_EQ(after.reason, StatusReason::kNone);
+  // Up to 5 more features for a line tracker, 10 for a point tracker (two endpoints per line); a
+  // line the model's stereo matching had already left out is not counted again.
+  EXPECT_GT(after.features_unmatched, before.features_unmatched);
+  EXPECT_LE(after.features_unmatched, before.features_unmatched + 10);
+  EXPECT_EQ(after.features_used + after.features_outside_gate, after.features_available);
+}
+
+// The dotted keys of every leaf of `j`.
+void LeafKeys(const nlohmann::json& j, const std::string& prefix, std::set<std::string>* keys) {
+  if (!j.is_object()) {
+    keys->insert(prefix);
+    return;
+  }
+  for (const auto& [key, value] : j.items()) LeafKeys(value, prefix.empty() ? key : prefix + "." + key, keys);
+}
+
+TEST_P(TrackerSuite, ListsEveryOptionItTakes) {
+  // `track --list-options`: one documented line per option, the same keys as Options() echoes
+  // (plus "preset", which selects the defaults), each with the default Options() reports.
+  if (!info().list_options) GTEST_SKIP() << "takes no options";
+  const std::vector<OptionDoc> docs = info().list_options();
+  const nlohmann::json options = Make()->Options();
+  std::set<std::string> listed, echoed;
+  LeafKeys(options, "", &echoed);
+  for (const OptionDoc& d : docs) {
+    EXPECT_TRUE(listed.insert(d.key).second) << d.key << " listed twice";
+    EXPECT_FALSE(d.doc.empty()) << d.key;
+    EXPECT_FALSE(d.allowed.empty()) << d.key;
+    if (d.key == "preset") continue;
+    EXPECT_TRUE(echoed.count(d.key)) << d.key << " is listed but not in Options()";
+    if (echoed.count(d.key)) {
+      std::string pointer = "/" + d.key;
+      std::replace(pointer.begin(), pointer.end(), '.', '/');
+      EXPECT_EQ(d.value, options.at(nlohmann::json::json_pointer(pointer)).dump()) << d.key;
+    }
+  }
+  for (const std::string& key : echoed) EXPECT_TRUE(listed.count(key)) << key << " is in Options() but not listed";
+  EXPECT_NE(FormatOptionDocs(docs).find("filter."), std::string::npos);
 }
 
 TEST_P(TrackerSuite, DeterministicAcrossResets) {

@@ -12,6 +12,7 @@ void ConstantPoseTracker::Reset(const StereoRig& rig) {
 TrackerOutput ConstantPoseTracker::Track(const StereoFrame& frame) {
   TrackerOutput out;
   out.status = started_ ? TrackingStatus::kTracking : TrackingStatus::kNewReference;
+  if (!started_) out.reason = StatusReason::kFirstFrame;
   out.features_available = static_cast<int>(frame.left.size());
   started_ = true;
   return out;

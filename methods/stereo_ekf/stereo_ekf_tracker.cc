@@ -63,6 +63,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   reference_features_ = model_->SetReference(frame);
   TrackerOutput out;
   out.status = TrackingStatus::kNewReference;
+  out.reason = StatusReason::kFirstFrame;
   out.features_available = reference_features_;
   return out;
 }
@@ -121,6 +122,8 @@ void StereoEkfTracker::Gate(const StereoFrame& frame, FrameState* state) {
   state->valid = static_cast<int>(valid_.size());
   state->gated = static_cast<int>(inliers_.size());
   state->out.features_available = state->valid;
+  state->out.features_unmatched = std::max(0, reference_features_ - n);
+  state->out.features_degenerate = n - state->valid;
 }
 
 void StereoEkfTracker::RobustStart(FrameState* state) {
@@ -166,6 +169,7 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
 }
 
 void StereoEkfTracker::Update(FrameState* state) {
+  state->entering = static_cast<int>(inliers_.size());
   if (inliers_.size() >= 2) state->cost = IteratedUpdate(state->linearization, state->blocks_at_linearization);
   state->used = static_cast<int>(inliers_.size());  // less the outliers re-gated at the solution
 }
@@ -331,6 +335,9 @@ void StereoEkfTracker::Assess(FrameState* state) {
     filter_.DampVelocity(options_.lost_velocity_decay);
     ++counters_.lost_frames;
     out.status = TrackingStatus::kLost;
+    out.reason = state->valid < 2      ? StatusReason::kFewMeasurable
+                 : state->entering < 2 ? StatusReason::kFewInsideGate
+                                       : StatusReason::kNoUpdate;
   } else {
     const int rows = MeasuredRows();
     healthy_ = state->cost <= HealthyCost(rows);
@@ -347,17 +354,19 @@ void StereoEkfTracker::Assess(FrameState* state) {
     noise_scale_sq_ = 1.0;
     if (out.status != TrackingStatus::kLost) ++counters_.lost_frames;
     out.status = TrackingStatus::kLost;
+    out.reason = StatusReason::kNonFinite;
   }
   previous_inliers_ = state->used;
   out.features_used = state->used;
+  out.features_outside_gate = state->valid - state->used;
   out.cam_from_world = filter_.cam_from_ref() * ref_from_world_;
 }
 
 void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* state) {
   const int remaining =
       options_.count_features == FeatureCount::kGated ? state->used : static_cast<int>(valid_.size());
-  const bool too_few = remaining < options_.min_features ||
-                       remaining < options_.min_feature_fraction * reference_features_;
+  const bool few_left = remaining < options_.min_features;
+  const bool too_few = few_left || remaining < options_.min_feature_fraction * reference_features_;
   if (!too_few || model_->CurrentStereoFeatures() <= remaining) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = filter_.cam_from_ref() * ref_from_world_;
@@ -366,7 +375,10 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   ++counters_.new_references;
   // On a frame without an update (possible when counting the lines inside the gate, the
   // paper's reading) the status stays kLost: the pose is still only a prediction.
-  if (state->out.status != TrackingStatus::kLost) state->out.status = TrackingStatus::kNewReference;
+  if (state->out.status != TrackingStatus::kLost) {
+    state->out.status = TrackingStatus::kNewReference;
+    state->out.reason = few_left ? StatusReason::kFewFeaturesLeft : StatusReason::kFeatureFractionLeft;
+  }
 }
 
 TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {

@@ -67,6 +67,7 @@ class StereoEkfTracker : public PoseTracker {
     Rigid3d predicted;
     // Features measurable, inside the gate at the prediction, and in the update.
     int valid = 0, gated = 0, used = 0;
+    int entering = 0;  // features entering the update (after the robust start)
     Rigid3d linearization;                // where the update starts
     bool blocks_at_linearization = true;  // features_ were evaluated at `linearization`
     double cost = std::numeric_limits<double>::infinity();  // posterior cost; infinity: no update
@@ -157,6 +158,17 @@ std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, 
   measurement_reader.RejectUnknownKeys();
   reader.RejectUnknownKeys();
   return std::make_unique<StereoEkfTracker>(filter, make_model(measurement), to_json(measurement));
+}
+
+// The listing of the options CreateStereoEkfTracker reads (TrackerInfo::list_options): "preset",
+// then "filter.*" and "measurement.*" with the default preset's values.
+template <typename MeasurementOptions>
+std::vector<OptionDoc> StereoEkfOptionDocs(const OptionSchema<MeasurementOptions>& measurement) {
+  std::vector<OptionDoc> docs = {{"preset", "default | paper", "\"default\"",
+                                  "\"paper\": the paper's filter and measurement, before the file's own values"}};
+  StereoEkfOptionsSchema().List(StereoEkfOptions(), "filter", &docs);
+  measurement.List(MeasurementOptions(), "measurement", &docs);
+  return docs;
 }
 
 }  // namespace slt

@@ -33,7 +33,9 @@ std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::strin
 }  // namespace
 
 TrackerInfo TrifocalLineEkfInfo() {
-  return {"trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)", Create};
+  TrackerInfo info{"trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)", Create};
+  info.list_options = [] { return StereoEkfOptionDocs(LineTransferOptionsSchema()); };
+  return info;
 }
 
 }  // namespace slt

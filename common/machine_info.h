@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/script_runner.h"  // SourceDir, ShellQuote
+
 namespace slt {
 
 // `git rev-parse HEAD` in `source_dir`; "unknown" when git or the repository is unavailable.
@@ -20,11 +22,5 @@ std::string UtcNow();
 
 // {"git": {"commit", "dirty"}, "machine": {"cpu", "cores", "os"}, "compiler", "build_type"}.
 nlohmann::json VersionAndMachineJson(const std::string& source_dir);
-
-// `s` quoted for a POSIX shell command line.
-std::string ShellQuote(const std::string& s);
-
-// The source tree this program was built from (compile-time SLT_SOURCE_DIR).
-std::string SourceDir();
 
 }  // namespace slt

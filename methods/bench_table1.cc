@@ -38,7 +38,7 @@
 
 #include "common/csv.h"
 #include "common/json_reader.h"
-#include "experiments/machine_info.h"
+#include "common/machine_info.h"
 #include "methods/pose_tracker.h"
 #include "simulator/simulator.h"
 

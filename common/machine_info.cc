@@ -1,4 +1,4 @@
-#include "experiments/machine_info.h"
+#include "common/machine_info.h"
 
 #include <sys/utsname.h>
 
@@ -9,9 +9,6 @@
 #include <fstream>
 #include <thread>
 
-#ifndef SLT_SOURCE_DIR
-#define SLT_SOURCE_DIR "."
-#endif
 #ifndef SLT_BUILD_TYPE
 #define SLT_BUILD_TYPE "unknown"
 #endif
@@ -93,20 +90,6 @@ nlohmann::json VersionAndMachineJson(const std::string& source_dir) {
           {"machine", {{"cpu", CpuModel()}, {"cores", CpuCores()}, {"os", os}}},
           {"compiler", CompilerName()},
           {"build_type", BuildType()}};
-}
-
-std::string SourceDir() { return SLT_SOURCE_DIR; }
-
-std::string ShellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'') {
-      q += "'\\''";
-    } else {
-      q += c;
-    }
-  }
-  return q + "'";
 }
 
 }  // namespace slt

@@ -1,0 +1,81 @@
+#include "evaluation/report.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace slt {
+namespace {
+
+// printf-style formatting of one number.
+std::string Format(const char* format, double value) {
+  char buffer[128];
+  const int n = std::snprintf(buffer, sizeof(buffer), format, value);
+  return std::string(buffer, static_cast<size_t>(std::min<int>(n, sizeof(buffer) - 1)));
+}
+
+// "100 of 600 estimate poses (16.7 %)" when the fraction is short, "" otherwise.
+std::string Shortfall(size_t associated, size_t total, const char* what, double min_fraction) {
+  const double fraction = total == 0 ? 0.0 : static_cast<double>(associated) / static_cast<double>(total);
+  if (fraction >= min_fraction) return "";
+  return std::to_string(associated) + " of " + std::to_string(total) + " " + what + " poses" +
+         Format(" (%.1f %%)", 100.0 * fraction);
+}
+
+constexpr size_t kNameWidth = 22;
+
+std::string Row(const std::string& name, const ErrorStatistics& s) {
+  std::string row = name;
+  row.resize(kNameWidth, ' ');
+  for (double v : {s.rmse, s.mean, s.median, s.std, s.min, s.max}) row += Format(" %10.6f", v);
+  return row + "\n";
+}
+
+std::string Header() {
+  std::string row = "metric";
+  row.resize(kNameWidth, ' ');
+  for (const char* column : {"rmse", "mean", "median", "std", "min", "max"}) {
+    char buffer[16];
+    std::snprintf(buffer, sizeof(buffer), " %10s", column);
+    row += buffer;
+  }
+  return row + "\n";
+}
+
+}  // namespace
+
+std::string AssociationWarning(const TrajectoryErrors& errors, double min_fraction) {
+  const std::string est = Shortfall(errors.associated_poses, errors.est_poses, "estimate", min_fraction);
+  const std::string gt = Shortfall(errors.associated_poses, errors.gt_poses, "ground-truth", min_fraction);
+  if (est.empty() && gt.empty()) return "";
+  const std::string window = Format("%g s", errors.options.max_time_diff_s);
+  std::string text = "only ";
+  if (!est.empty()) text += est + " are associated with a ground-truth pose within " + window;
+  if (!est.empty() && !gt.empty()) text += ", and only ";
+  if (!gt.empty()) text += gt + " with an estimate pose";
+  return text + ": the errors describe part of the run only, or two different runs (below " +
+         Format("%g %%", 100.0 * min_fraction) + " of either trajectory)";
+}
+
+std::string ErrorTable(const TrajectoryErrors& errors) {
+  std::string alignment = AlignmentName(errors.options.alignment);
+  if (errors.options.alignment == Alignment::kSim3) alignment += Format(" (scale %.6g)", errors.alignment.scale);
+  std::string table = "associated " + std::to_string(errors.associated_poses) + " of " +
+                      std::to_string(errors.est_poses) + " estimate and " + std::to_string(errors.associated_poses) +
+                      " of " + std::to_string(errors.gt_poses) + " ground-truth poses (max time difference " +
+                      Format("%g s", errors.options.max_time_diff_s) + "); alignment " + alignment + "\n";
+  table += Header();
+  table += Row("ATE translation (m)", errors.ate_trans_m);
+  table += Row("ATE rotation (deg)", errors.ate_rot_deg);
+  table += Row("RPE translation (m)", errors.rpe_trans_m);
+  table += Row("RPE rotation (deg)", errors.rpe_rot_deg);
+  const int delta = errors.options.rpe_delta_frames;
+  table += "RPE: " + std::to_string(errors.rpe_trans_m.count) + " pairs (i, i + " + std::to_string(delta) + "), " +
+           (errors.options.rpe_all_pairs ? "every i" : "i = 0, " + std::to_string(delta) + ", " +
+                                                           std::to_string(2 * delta) + ", ...") + "\n";
+  const FrameError& f = errors.Final();
+  table += "final error (frame " + std::to_string(f.frame) + Format(", time %g s): ", f.time_s) +
+           Format("translation %.6f m, ", f.trans_err_m) + Format("rotation %.6f deg\n", f.rot_err_deg);
+  return table;
+}
+
+}  // namespace slt

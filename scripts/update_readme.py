@@ -1,0 +1,331 @@
+#!/usr/bin/python3
+"""Fills the generated blocks of README.md from results/: every result table and number the
+README quotes comes from the committed summaries, so the two cannot disagree.
+
+    scripts/update_readme.py [--check] [--readme README.md] [--results results/]
+
+A block is `<!-- generated:NAME -->...<!-- /generated -->`, inline in a sentence or around a
+table; its content is replaced by what GENERATORS[NAME] makes of results/. Run it after
+regenerating results (`run_experiment ...`, `bench_table1 --out results/table1`). With --check it
+writes nothing and exits with 1 and a diff when README.md differs from what the results give
+(the CTest test readme_results_test). Methods are read from the summaries, so a tracker added to
+the registry appears in the tables once its results exist. Python 3 standard library only.
+"""
+
+import argparse
+import csv
+import difflib
+import json
+import os
+import re
+import sys
+
+BLOCK = re.compile(r"(<!-- generated:([a-z0-9_]+) -->)(.*?)(<!-- /generated -->)", re.S)
+
+
+class ResultsError(Exception):
+    """A result the README needs is missing; the message names the file."""
+
+
+def sig(value, digits=3):
+    """`value` with `digits` significant digits, plain notation down to 1e-4."""
+    if value != value:
+        return "nan"
+    if value != 0 and abs(value) < 1e-4:
+        mantissa, exponent = ("%.*e" % (digits - 2 if digits > 1 else 0, value)).split("e")
+        return "%se-%d" % (mantissa, -int(exponent))
+    if abs(value) >= 10 ** digits:
+        return "%d" % round(value)
+    return "%.*g" % (digits, value)
+
+
+def deg(value):
+    return sig(value) + "°"
+
+
+def mm(value_m):
+    """Millimetres below a metre, metres above (a diverged run)."""
+    return sig(1000.0 * value_m) + " mm" if abs(value_m) < 1.0 else sig(value_m) + " m"
+
+
+class Results:
+    def __init__(self, root):
+        self.root = root
+        self._cache = {}
+
+    def path(self, *parts):
+        return os.path.join(self.root, *parts)
+
+    def summary(self, experiment):
+        """Rows of results/<experiment>/summary.csv, numbers as floats where they parse."""
+        if experiment not in self._cache:
+            path = self.path(experiment, "summary.csv")
+            try:
+                with open(path, newline="") as f:
+                    rows = list(csv.DictReader(f))
+            except OSError as e:
+                raise ResultsError("%s: %s" % (path, e.strerror))
+            if not rows:
+                raise ResultsError("%s: no rows" % path)
+            self._cache[experiment] = (path, rows)
+        return self._cache[experiment][1]
+
+    def methods(self, experiment):
+        """Methods in the order of the summary (the config's order)."""
+        names = []
+        for r in self.summary(experiment):
+            if r["method"] not in names:
+                names.append(r["method"])
+        return names
+
+    def row(self, experiment, method, **fixed):
+        for r in self.summary(experiment):
+            if r["method"] == method and all(float(r[k]) == float(v) if is_number(v) else r[k] == v
+                                              for k, v in fixed.items()):
+                return r
+        raise ResultsError("%s: no row for method '%s' at %s" % (self._cache[experiment][0], method, fixed or "the only point"))
+
+    def value(self, experiment, method, column, **fixed):
+        r = self.row(experiment, method, **fixed)
+        if column not in r:
+            raise ResultsError("%s: no column '%s'" % (self._cache[experiment][0], column))
+        return float(r[column])
+
+    def values(self, experiment, parameter):
+        """The distinct values of a sweep column, in order of appearance, as floats."""
+        out = []
+        for r in self.summary(experiment):
+            v = float(r[parameter])
+            if v not in out:
+                out.append(v)
+        return out
+
+    def json(self, *parts):
+        path = self.path(*parts)
+        try:
+            with open(path) as f:
+                return json.load(f)
+        except OSError as e:
+            raise ResultsError("%s: %s" % (path, e.strerror))
+
+
+def is_number(v):
+    return isinstance(v, (int, float))
+
+
+# The paper's values (Lee et al. 2015, Sec. 5.1 and Table 1), quoted beside the reproduction.
+PAPER_FIG4 = (0.4, 0.010)  # deg, m at +-2.5 px (upper bounds)
+PAPER_FIG5 = (0.03, 0.0015)  # deg, m at 200 px focal error (upper bounds)
+DEFAULT = "trifocal_line_ekf"
+POINTS = "yu_point_ekf"
+FAITHFUL = "trifocal_line_ekf (paper preset)"
+
+
+def fig4_table(r):
+    noise = max(r.values("noise_sweep", "noise.endpoint_px"))
+    lines = ["| at ±%s px | rotation | translation |" % sig(noise), "|---|---:|---:|",
+             "| paper, trifocal-line EKF (upper bound) | < %s | < %s |" % (deg(PAPER_FIG4[0]), mm(PAPER_FIG4[1]))]
+    for m in r.methods("noise_sweep"):
+        lines.append("| `%s` | %s | %s |" % (m, deg(r.value("noise_sweep", m, "rot_err_deg_mean", **{"noise.endpoint_px": noise})),
+                                             mm(r.value("noise_sweep", m, "trans_err_m_mean", **{"noise.endpoint_px": noise}))))
+    return "\n" + "\n".join(lines) + "\n"
+
+
+def fig4_noise_free(r):
+    parts = ["`%s` %s" % (m, deg(r.value("noise_sweep", m, "rot_err_deg_mean", **{"noise.endpoint_px": 0})))
+             for m in r.methods("noise_sweep")]
+    return ", ".join(parts)
+
+
+def fig4_against_paper(r):
+    noise = max(r.values("noise_sweep", "noise.endpoint_px"))
+    rot = r.value("noise_sweep", DEFAULT, "rot_err_deg_mean", **{"noise.endpoint_px": noise})
+    trans = r.value("noise_sweep", DEFAULT, "trans_err_m_mean", **{"noise.endpoint_px": noise})
+    return "%.2g× in rotation and %.2g× in translation" % (PAPER_FIG4[0] / rot, PAPER_FIG4[1] / trans)
+
+
+def fig4_wall_time(r):
+    return "%s s" % sig(r.json("noise_sweep", "run.json")["experiment_time_s"], 2)
+
+
+def table1(r):
+    t = r.json("table1", "table1.json")
+    cols = t["columns"]
+
+    def us(seconds):
+        return sig(seconds * 1e6) + " µs"
+
+    def ms(seconds):
+        return sig(seconds * 1e3) + " ms" if is_number(seconds) else (seconds or "–")
+
+    def paper_order(name):  # the rows of the paper's Table 1, in its order
+        for k, start in enumerate(("The proposed", "Yu", "Elqursh", "Taylor")):
+            if name.startswith(start):
+                return k
+        return 4
+
+    lines = ["| method | %s |" % " | ".join("minimum" if c == "minimum" else "%s lines" % c for c in cols),
+             "|---|" + "---:|" * len(cols)]
+    for name, m in t["methods"].items():
+        cells = [us(s) + (" (%d line%s)" % (n, "" if n == 1 else "s") if c == "minimum" else "")
+                 for c, n, s in zip(cols, m["lines"], m["seconds"])]
+        lines.append("| `%s` | %s |" % (name, " | ".join(cells)))
+    for name, seconds in sorted(t["paper"].items(), key=lambda item: paper_order(item[0])):
+        lines.append("| paper: %s | %s |" % (name, " | ".join(ms(s) for s in seconds)))
+    return "\n" + "\n".join(lines) + "\n"
+
+
+def table1_ratios(r):
+    t = r.json("table1", "table1.json")
+    paper = t["paper"]["The proposed approach (trifocal-line EKF)"]
+    ours = t["methods"][DEFAULT]["seconds"]
+    i10, i30 = t["columns"].index("10"), t["columns"].index("30")
+    return "about %d× faster than the paper's figures at 30 lines; the growth from 10 to 30 lines is ×%.2g here, ×%.2g there" % (
+        round(paper[i30] / ours[i30], -2), ours[i30] / ours[i10], paper[i30] / paper[i10])
+
+
+def table1_machine(r):
+    t = r.json("table1", "table1.json")
+    return "%s, %d cores, %s %s" % (t["machine"]["cpu"], t["machine"]["cores"], t["compiler"], t["build_type"])
+
+
+def loop_path(r):
+    return "%s m" % sig(r.value("loop", DEFAULT, "path_length_m_mean"))
+
+
+def loop_table(r):
+    trials = int(r.row("loop", DEFAULT)["trials"])
+    has_max = "max_trans_err_m_mean" in r.row("loop", DEFAULT)
+    head = "| method (mean of %d trials) | start–end gap | gap / path | ATE (RMSE) |%s new references |" % (
+        trials, " largest error |" if has_max else "")
+    lines = [head, "|---|---:|---:|---:|" + ("---:|" if has_max else "") + "---:|"]
+    for m in r.methods("loop"):
+        cells = [mm(r.value("loop", m, "end_gap_m_mean")), "%s %%" % sig(r.value("loop", m, "drift_pct_mean"), 2),
+                 mm(r.value("loop", m, "ate_trans_m_mean"))]
+        if has_max:
+            cells.append(mm(r.value("loop", m, "max_trans_err_m_mean")))
+        cells.append(sig(r.value("loop", m, "new_references_mean"), 2))
+        lines.append("| `%s` | %s |" % (m, " | ".join(cells)))
+    return "\n" + "\n".join(lines) + "\n"
+
+
+FEATURE_LINES = (2, 4, 10, 20, 40)
+
+
+def feature_count_table(r):
+    lines_axis = [n for n in FEATURE_LINES if n in r.values("feature_count", "max_features")]
+    rates = r.values("feature_count", "outliers.rate")
+    lines = ["| method | outliers | %s |" % " | ".join("%d lines" % n for n in lines_axis),
+             "|---|---:|" + "---:|" * len(lines_axis)]
+    for m in r.methods("feature_count"):
+        for rate in rates:
+            cells = []
+            for n in lines_axis:
+                at = {"max_features": n, "outliers.rate": rate}
+                cells.append("%s / %s" % (deg(r.value("feature_count", m, "rot_err_deg_mean", **at)),
+                                          sig(r.value("feature_count", m, "rot_err_deg_median", **at))))
+            lines.append("| `%s` | %s %% | %s |" % (m, sig(100 * rate), " | ".join(cells)))
+    return "\n" + "\n".join(lines) + "\n"
+
+
+def faithful_fixed_r(r):
+    methods = r.methods("faithful_fixed_r")
+    measured, guessed = methods[0], methods[1]
+    trials = int(r.row("faithful_fixed_r", measured)["trials"])
+    return "%s (median %s, %s) over %d trials; the earlier guessed R gave %s" % (
+        deg(r.value("faithful_fixed_r", measured, "rot_err_deg_mean")),
+        deg(r.value("faithful_fixed_r", measured, "rot_err_deg_median")),
+        mm(r.value("faithful_fixed_r", measured, "trans_err_m_mean")), trials,
+        deg(r.value("faithful_fixed_r", guessed, "rot_err_deg_mean")))
+
+
+def endpoints_comparison(endpoints):
+    def make(r):
+        at = {"noise.endpoints": endpoints}
+        return "%s against %s" % (deg(r.value("error_vs_frame", POINTS, "rot_err_deg_mean", **at)),
+                                  deg(r.value("error_vs_frame", DEFAULT, "rot_err_deg_mean", **at)))
+    return make
+
+
+def sliding_comparison(r):
+    at = {"noise.endpoints": "sliding"}
+    return "%s against %s" % (deg(r.value("error_vs_frame", DEFAULT, "rot_err_deg_mean", **at)),
+                              deg(r.value("error_vs_frame", POINTS, "rot_err_deg_mean", **at)))
+
+
+def focal_200(r):
+    focal = max(r.values("focal_sweep", "focal_error_px"))
+    rots = [r.value("focal_sweep", m, "rot_err_deg_mean", focal_error_px=focal) for m in r.methods("focal_sweep")]
+    trans = [r.value("focal_sweep", m, "trans_err_m_mean", focal_error_px=focal) for m in r.methods("focal_sweep")]
+    return "%s–%s and %s–%s mm at frame 100 (`results/focal_sweep/`), against the paper's < %s and < %s; the methods agree to within %d %%" % (
+        sig(min(rots)), deg(max(rots)), sig(1000 * min(trans)), sig(1000 * max(trans)), deg(PAPER_FIG5[0]),
+        mm(PAPER_FIG5[1]), round(100.0 * max(max(rots) / min(rots), max(trans) / min(trans)) - 100.0))
+
+
+GENERATORS = {
+    "fig4_table": fig4_table,
+    "fig4_noise_free": fig4_noise_free,
+    "fig4_against_paper": fig4_against_paper,
+    "fig4_wall_time": fig4_wall_time,
+    "table1": table1,
+    "table1_ratios": table1_ratios,
+    "table1_machine": table1_machine,
+    "loop_path": loop_path,
+    "loop_table": loop_table,
+    "feature_count_table": feature_count_table,
+    "faithful_fixed_r": faithful_fixed_r,
+    "fixed_endpoints": endpoints_comparison("fixed"),
+    "sliding_endpoints": sliding_comparison,
+    "focal_200": focal_200,
+}
+
+
+def fill(text, results):
+    """The README with every generated block refilled; raises ResultsError on an unknown block."""
+    def replace(match):
+        name = match.group(2)
+        if name not in GENERATORS:
+            raise ResultsError("README block 'generated:%s' has no generator (known: %s)" % (name, ", ".join(sorted(GENERATORS))))
+        return match.group(1) + GENERATORS[name](results) + match.group(4)
+
+    return BLOCK.sub(replace, text)
+
+
+def main():
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--check", action="store_true", help="write nothing; exit 1 when README.md is out of date")
+    parser.add_argument("--readme", default=os.path.join(here, "README.md"))
+    parser.add_argument("--results", default=os.path.join(here, "results"))
+    args = parser.parse_args()
+    try:
+        with open(args.readme, encoding="utf-8") as f:
+            current = f.read()
+        if not BLOCK.search(current):
+            raise ResultsError("%s: no generated block" % args.readme)
+        wanted = fill(current, Results(args.results))
+    except (ResultsError, OSError, KeyError, ValueError) as e:
+        sys.stderr.write("update_readme.py: error: %s\n" % e)
+        return 1
+    if args.check:
+        if wanted == current:
+            print("update_readme.py: %s agrees with %s" % (args.readme, args.results))
+            return 0
+        sys.stdout.writelines(difflib.unified_diff(current.splitlines(True), wanted.splitlines(True),
+                                                   args.readme, "from " + args.results))
+        sys.stderr.write("update_readme.py: error: %s does not match %s; run scripts/update_readme.py\n"
+                         % (args.readme, args.results))
+        return 1
+    if wanted != current:
+        tmp = "%s.tmp.%d" % (args.readme, os.getpid())
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(wanted)
+        os.replace(tmp, args.readme)
+        print("update_readme.py: updated %s" % args.readme)
+    else:
+        print("update_readme.py: %s is up to date" % args.readme)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
