@@ -55,6 +55,7 @@ void StereoEkfTracker::Start(const StereoFrame& frame) {
   ref_from_world_ = Rigid3d();
   filter_.Reset(options_);
   reference_features_ = model_->SetReference(frame);
+  wants_new_features_ = false;
 }
 
 void StereoEkfTracker::EvaluateAtPrediction(const Rigid3d& predicted) {
@@ -238,11 +239,13 @@ bool StereoEkfTracker::MaybeRebootstrap(const StereoFrame& frame, int used) {
   const int remaining = options_.count_features == FeatureCount::kGated ? used : static_cast<int>(valid_.size());
   const bool too_few = remaining < options_.min_features ||
                        remaining < options_.min_feature_fraction * reference_features_;
+  wants_new_features_ = too_few;
   if (!too_few || model_->CurrentStereoFeatures() <= remaining) return false;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = filter_.cam_from_ref() * ref_from_world_;
   filter_.Rebase();
   reference_features_ = model_->SetReference(frame);
+  wants_new_features_ = false;
   ++counters_.rebootstraps;
   return true;
 }
