@@ -1,6 +1,10 @@
 #include "dataset/euroc.h"
 
+#include <Eigen/SVD>
 #include <charconv>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <cmath>
 #include <stdexcept>
 
@@ -79,6 +83,164 @@ void WriteEurocGroundTruth(const std::string& path, const Trajectory& world_from
     text += ",0,0,0,0,0,0\n";
   }
   WriteTextFileAtomically(path, text);
+}
+
+}  // namespace slt
+
+namespace slt {
+namespace {
+
+[[noreturn]] void FailAt(const std::string& path, const std::string& what) {
+  throw std::runtime_error(path + ": " + what);
+}
+
+std::string Trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\r");
+  return s.substr(a, b - a + 1);
+}
+
+// "[1, 2.5, 3]" -> numbers; throws naming the key.
+std::vector<double> ParseNumberList(const std::string& text, const std::string& path, const std::string& key) {
+  const size_t open = text.find('['), close = text.rfind(']');
+  if (open == std::string::npos || close == std::string::npos || close < open) {
+    FailAt(path, "key '" + key + "': expected a list [a, b, ...], got '" + text + "'");
+  }
+  std::vector<double> values;
+  std::stringstream items(text.substr(open + 1, close - open - 1));
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    item = Trim(item);
+    if (item.empty()) continue;
+    double v = 0.0;
+    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), v);
+    if (error != std::errc() || end != item.data() + item.size() || !std::isfinite(v)) {
+      FailAt(path, "key '" + key + "': not a finite number: '" + item + "'");
+    }
+    values.push_back(v);
+  }
+  return values;
+}
+
+}  // namespace
+
+EurocCameraInfo ReadEurocCameraYaml(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) FailAt(path, "cannot read the camera calibration (sensor.yaml)");
+  // Flattened "key" -> "value" with nested keys joined by '.', lists joined over lines.
+  std::map<std::string, std::string> values;
+  std::string line, parent, pending_key, pending_value;
+  while (std::getline(in, line)) {
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos && line.rfind("%YAML", 0) != 0) line = line.substr(0, hash);
+    if (line.rfind("%YAML", 0) == 0 || Trim(line).empty()) continue;
+    if (!pending_key.empty()) {
+      pending_value += " " + Trim(line);
+      if (pending_value.find(']') != std::string::npos) {
+        values[pending_key] = pending_value;
+        pending_key.clear();
+      }
+      continue;
+    }
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos) FailAt(path, "expected 'key: value', got '" + Trim(line) + "'");
+    const bool indented = !line.empty() && (line[0] == ' ' || line[0] == '\t');
+    const std::string key = Trim(line.substr(0, colon));
+    const std::string value = Trim(line.substr(colon + 1));
+    if (!indented) parent = value.empty() ? key : "";
+    const std::string full = indented && !parent.empty() ? parent + "." + key : key;
+    if (value.find('[') != std::string::npos && value.find(']') == std::string::npos) {
+      pending_key = full;
+      pending_value = value;
+    } else {
+      values[full] = value;
+    }
+  }
+  if (!pending_key.empty()) FailAt(path, "key '" + pending_key + "': list not closed with ']'");
+  auto require = [&](const std::string& key) -> const std::string& {
+    const auto it = values.find(key);
+    if (it == values.end()) FailAt(path, "missing key '" + key + "'");
+    return it->second;
+  };
+  auto list = [&](const std::string& key, size_t size) {
+    const std::vector<double> v = ParseNumberList(require(key), path, key);
+    if (v.size() != size) {
+      FailAt(path, "key '" + key + "': expected " + std::to_string(size) + " numbers, got " + std::to_string(v.size()));
+    }
+    return v;
+  };
+  EurocCameraInfo camera;
+  if (values.count("comment")) camera.comment = values["comment"];
+  if (values.count("camera_model") && values["camera_model"] != "pinhole") {
+    FailAt(path, "key 'camera_model': only \"pinhole\" is supported, got '" + values["camera_model"] + "'");
+  }
+  const std::vector<double> t = list("T_BS.data", 16);
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) m(r, c) = t[4 * r + c];
+  }
+  const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
+  if ((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() > 1e-4 || r.determinant() < 0.0 ||
+      (m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) {
+    FailAt(path, "key 'T_BS.data': not a rigid transform (rotation not orthonormal or last row not [0 0 0 1])");
+  }
+  // Re-orthonormalise the printed rotation (EuRoC prints about 12 digits).
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  camera.body_from_cam = Rigid3d(svd.matrixU() * svd.matrixV().transpose(), m.topRightCorner<3, 1>());
+  if (values.count("rate_hz")) camera.rate_hz = ParseNumberList("[" + values["rate_hz"] + "]", path, "rate_hz").at(0);
+  const std::vector<double> resolution = list("resolution", 2);
+  if (resolution[0] < 1 || resolution[1] < 1 || resolution[0] != std::floor(resolution[0]) ||
+      resolution[1] != std::floor(resolution[1])) {
+    FailAt(path, "key 'resolution': expected two positive integers");
+  }
+  camera.width = static_cast<int>(resolution[0]);
+  camera.height = static_cast<int>(resolution[1]);
+  const std::vector<double> k = list("intrinsics", 4);
+  camera.intrinsics = PinholeCamera{k[0], k[1], k[2], k[3]};
+  try {
+    camera.intrinsics.Check("intrinsics");
+  } catch (const std::exception& e) {
+    FailAt(path, std::string("key 'intrinsics': ") + e.what());
+  }
+  if (values.count("distortion_model") && values["distortion_model"] != "radial-tangential") {
+    FailAt(path, "key 'distortion_model': only \"radial-tangential\" is supported, got '" +
+                     values["distortion_model"] + "'");
+  }
+  if (values.count("distortion_coefficients")) {
+    const std::vector<double> d = list("distortion_coefficients", 4);
+    for (int i = 0; i < 4; ++i) camera.distortion[i] = d[i];
+  }
+  return camera;
+}
+
+std::vector<EurocImageEntry> ReadEurocImageList(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) FailAt(path, "cannot read the image list");
+  std::vector<EurocImageEntry> entries;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    line = Trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    const size_t comma = line.find(',');
+    const std::string where = "line " + std::to_string(number);
+    if (comma == std::string::npos) FailAt(path, where + ": expected 'timestamp,filename', got '" + line + "'");
+    const std::string stamp = Trim(line.substr(0, comma));
+    EurocImageEntry entry;
+    const auto [end, error] = std::from_chars(stamp.data(), stamp.data() + stamp.size(), entry.timestamp_ns);
+    if (error != std::errc() || end != stamp.data() + stamp.size()) {
+      FailAt(path, where + ": timestamp is not an integer: '" + stamp + "'");
+    }
+    entry.filename = Trim(line.substr(comma + 1));
+    if (entry.filename.empty()) FailAt(path, where + ": empty file name");
+    if (!entries.empty() && entry.timestamp_ns <= entries.back().timestamp_ns) {
+      FailAt(path, where + ": timestamps must increase");
+    }
+    entries.push_back(std::move(entry));
+  }
+  return entries;
 }
 
 }  // namespace slt

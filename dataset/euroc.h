@@ -36,6 +36,17 @@ std::int64_t EurocTimestampNs(double seconds);
 void WriteEurocCameraYaml(const std::string& path, const EurocCameraInfo& camera);
 // "#timestamp [ns],filename" and one "<t>,<t>.png" line per image.
 void WriteEurocImageList(const std::string& path, const std::vector<std::int64_t>& timestamps_ns);
+// Readers of the same files (ours and EuRoC's own): std::runtime_error naming the file and the
+// key or line on anything missing or malformed. The camera reader takes the subset of YAML these
+// files use ("key: value", "key: [a, b, ...]" possibly over several lines, T_BS's "data").
+EurocCameraInfo ReadEurocCameraYaml(const std::string& path);
+// One entry per image line: the timestamp and the file name as written (relative to data/).
+struct EurocImageEntry {
+  std::int64_t timestamp_ns = 0;
+  std::string filename;
+};
+std::vector<EurocImageEntry> ReadEurocImageList(const std::string& path);
+
 // state_groundtruth_estimate0/data.csv: per pose the position p_RS_R, the quaternion q_RS
 // (w, x, y, z) of world_from_body, the velocity v_RS_R (central differences of the positions)
 // and zero gyroscope and accelerometer biases.

@@ -82,5 +82,68 @@ TEST(Euroc, GroundTruthHasEurocsColumns) {
   std::filesystem::remove(path);
 }
 
+TEST(Euroc, CameraYamlReadsBackWhatWasWritten) {
+  EurocCameraInfo c;
+  c.comment = "right";
+  c.body_from_cam = Rigid3d(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+                            Eigen::Vector3d(0.11, -0.002, 0.003));
+  c.rate_hz = 20;
+  c.width = 752;
+  c.height = 480;
+  c.intrinsics = {458.654, 457.296, 367.215, 248.375};
+  c.distortion = {-0.28, 0.07, 0.0002, 1.7e-05};
+  const std::string path = TempPath("readback.yaml");
+  WriteEurocCameraYaml(path, c);
+  const EurocCameraInfo r = ReadEurocCameraYaml(path);
+  EXPECT_EQ(r.comment, "right");
+  EXPECT_TRUE(r.body_from_cam.rotation.isApprox(c.body_from_cam.rotation, 1e-12));
+  EXPECT_TRUE(r.body_from_cam.translation.isApprox(c.body_from_cam.translation, 1e-12));
+  EXPECT_EQ(r.rate_hz, 20);
+  EXPECT_EQ(r.width, 752);
+  EXPECT_EQ(r.height, 480);
+  EXPECT_EQ(r.intrinsics.fx, 458.654);
+  EXPECT_EQ(r.intrinsics.cy, 248.375);
+  EXPECT_EQ(r.distortion[3], 1.7e-05);
+  std::filesystem::remove(path);
+}
+
+TEST(Euroc, CameraYamlErrorsNameTheFileAndKey) {
+  const std::string path = TempPath("bad.yaml");
+  {
+    std::ofstream out(path);
+    out << "%YAML:1.0\nT_BS:\n  cols: 4\n  rows: 4\n  data: [1, 0, 0, 0,\n 0, 1, 0, 0,\n 0, 0, 1, 0,\n"
+           " 0, 0, 0, 1]\nresolution: [752, 480]\nintrinsics: [458, 457, 367]\n";
+  }
+  try {
+    ReadEurocCameraYaml(path);
+    FAIL() << "three intrinsics accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'intrinsics'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ReadEurocCameraYaml(path + ".missing"), std::runtime_error);
+  std::filesystem::remove(path);
+}
+
+TEST(Euroc, ImageListReadsBackAndRejectsDisorder) {
+  const std::string path = TempPath("data.csv");
+  WriteEurocImageList(path, {0, 33333333, 66666667});
+  const std::vector<EurocImageEntry> entries = ReadEurocImageList(path);
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_EQ(entries[1].timestamp_ns, 33333333);
+  EXPECT_EQ(entries[2].filename, "66666667.png");
+  {
+    std::ofstream out(path);
+    out << "#timestamp [ns],filename\n10,10.png\n5,5.png\n";
+  }
+  try {
+    ReadEurocImageList(path);
+    FAIL() << "decreasing timestamps accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace slt

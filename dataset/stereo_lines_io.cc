@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
@@ -200,6 +201,19 @@ void AppendImage(const std::vector<LineObservation>& observations, std::string* 
   *out += "\n    ]";
 }
 
+// The per-frame rules of CheckStereoSequence; `previous_time` is the time of frame k - 1 (k > 0).
+void CheckFrame(const StereoFrame& frame, size_t k, double previous_time, const std::string& where) {
+  const std::string frame_path = Indexed("frames", k);
+  if (!std::isfinite(frame.time)) Fail(where, frame_path + ".time", "must be finite");
+  if (k > 0 && frame.time < previous_time) {
+    Fail(where, frame_path + ".time",
+         nlohmann::json(frame.time).dump() + " is before the previous frame's time " +
+             nlohmann::json(previous_time).dump());
+  }
+  CheckImage(frame.left, where, frame_path + ".left");
+  CheckImage(frame.right, where, frame_path + ".right");
+}
+
 }  // namespace
 
 StereoRig StereoRigFromJson(const nlohmann::json& object, const std::string& where, const std::string& path) {
@@ -232,16 +246,7 @@ nlohmann::json StereoRigToJson(const StereoRig& rig) {
 void CheckStereoSequence(const StereoSequence& sequence, const std::string& where) {
   CheckRig(sequence.rig, where, "rig");
   for (size_t k = 0; k < sequence.frames.size(); ++k) {
-    const StereoFrame& frame = sequence.frames[k];
-    const std::string frame_path = Indexed("frames", k);
-    if (!std::isfinite(frame.time)) Fail(where, frame_path + ".time", "must be finite");
-    if (k > 0 && frame.time < sequence.frames[k - 1].time) {
-      Fail(where, frame_path + ".time",
-           nlohmann::json(frame.time).dump() + " is before the previous frame's time " +
-               nlohmann::json(sequence.frames[k - 1].time).dump());
-    }
-    CheckImage(frame.left, where, frame_path + ".left");
-    CheckImage(frame.right, where, frame_path + ".right");
+    CheckFrame(sequence.frames[k], k, k > 0 ? sequence.frames[k - 1].time : 0.0, where);
   }
 }
 
@@ -288,29 +293,64 @@ nlohmann::json StereoLinesToJson(const StereoSequence& sequence) {
   return {{"format", kFormatName}, {"rig", StereoRigToJson(sequence.rig)}, {"frames", std::move(frames)}};
 }
 
-void WriteStereoLines(const std::string& path, const StereoSequence& sequence) {
-  CheckStereoSequence(sequence, path);
+StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& rig)
+    : path_(path), partial_path_(path + ".partial") {
+  CheckRig(rig, path, "rig");
+  out_.open(partial_path_, std::ios::binary | std::ios::trunc);
+  if (!out_) throw std::runtime_error(partial_path_ + ": cannot write file");
   // One rig field per line and one observation per line: readable in a pager, diffable, and a
   // fraction of the size of an indented dump (which puts every number on its own line).
-  std::string out = std::string("{\n  \"format\": \"") + kFormatName + "\",\n  \"rig\": {";
-  const nlohmann::json rig = StereoRigToJson(sequence.rig);
-  for (auto it = rig.begin(); it != rig.end(); ++it) {
-    out += it == rig.begin() ? "\n    \"" : ",\n    \"";
-    out += it.key() + "\": " + it.value().dump();
+  std::string text = std::string("{\n  \"format\": \"") + kFormatName + "\",\n  \"rig\": {";
+  const nlohmann::json rig_json = StereoRigToJson(rig);
+  for (auto it = rig_json.begin(); it != rig_json.end(); ++it) {
+    text += it == rig_json.begin() ? "\n    \"" : ",\n    \"";
+    text += it.key() + "\": " + it.value().dump();
   }
-  out += "\n  },\n  \"frames\": [";
-  for (size_t k = 0; k < sequence.frames.size(); ++k) {
-    const StereoFrame& frame = sequence.frames[k];
-    out += k == 0 ? "\n    {\"time\": " : ",\n    {\"time\": ";
-    AppendNumber(frame.time, &out);
-    out += ", \"left\": ";
-    AppendImage(frame.left, &out);
-    out += ", \"right\": ";
-    AppendImage(frame.right, &out);
-    out += "}";
+  text += "\n  },\n  \"frames\": [";
+  out_ << text;
+}
+
+StereoLinesWriter::~StereoLinesWriter() {
+  if (!closed_) {
+    out_.close();
+    std::remove(partial_path_.c_str());
   }
-  out += sequence.frames.empty() ? "]\n}\n" : "\n  ]\n}\n";
-  WriteTextFileAtomically(path, out);
+}
+
+void StereoLinesWriter::Append(const StereoFrame& frame) {
+  CheckFrame(frame, frames_, previous_time_, path_);
+  buffer_.clear();
+  buffer_ += frames_ == 0 ? "\n    {\"time\": " : ",\n    {\"time\": ";
+  AppendNumber(frame.time, &buffer_);
+  buffer_ += ", \"left\": ";
+  AppendImage(frame.left, &buffer_);
+  buffer_ += ", \"right\": ";
+  AppendImage(frame.right, &buffer_);
+  buffer_ += "}";
+  out_ << buffer_;
+  if (!out_) throw std::runtime_error(partial_path_ + ": write failed");
+  previous_time_ = frame.time;
+  ++frames_;
+}
+
+void StereoLinesWriter::Close() {
+  if (closed_) return;
+  out_ << (frames_ == 0 ? "]\n}\n" : "\n  ]\n}\n");
+  out_.flush();
+  if (!out_) throw std::runtime_error(partial_path_ + ": write failed");
+  out_.close();
+  if (std::rename(partial_path_.c_str(), path_.c_str()) != 0) {
+    std::remove(partial_path_.c_str());
+    throw std::runtime_error(path_ + ": cannot move the written file into place");
+  }
+  closed_ = true;
+}
+
+void WriteStereoLines(const std::string& path, const StereoSequence& sequence) {
+  CheckStereoSequence(sequence, path);
+  StereoLinesWriter writer(path, sequence.rig);
+  for (const StereoFrame& frame : sequence.frames) writer.Append(frame);
+  writer.Close();
 }
 
 }  // namespace slt

@@ -12,6 +12,7 @@
 // into a default). Ids are any integers; a line may be seen in one image only.
 #pragma once
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -23,6 +24,30 @@ namespace slt {
 StereoSequence ReadStereoLines(const std::string& path);
 StereoSequence StereoLinesFromJson(const nlohmann::json& document, const std::string& where);
 nlohmann::json StereoLinesToJson(const StereoSequence& sequence);
+// Writes a stereo-lines/1 file one frame at a time, so that a front end can stream any number
+// of frames with flat memory. The text is that of WriteStereoLines. The file is written as
+// PATH.partial and renamed to PATH by Close(); a writer destroyed before Close() removes it
+// (a program writes all its outputs or none). Each frame is checked as CheckStereoSequence
+// does; errors name PATH and the frame's key path.
+class StereoLinesWriter {
+ public:
+  StereoLinesWriter(const std::string& path, const StereoRig& rig);
+  ~StereoLinesWriter();
+  StereoLinesWriter(const StereoLinesWriter&) = delete;
+  StereoLinesWriter& operator=(const StereoLinesWriter&) = delete;
+  void Append(const StereoFrame& frame);
+  void Close();
+  size_t frames() const { return frames_; }
+
+ private:
+  std::string path_, partial_path_;
+  std::ofstream out_;
+  std::string buffer_;
+  size_t frames_ = 0;
+  double previous_time_ = 0.0;
+  bool closed_ = false;
+};
+
 // Checks the sequence first (CheckStereoSequence), so it never writes a file that
 // ReadStereoLines would reject; writes atomically, one observation per line.
 void WriteStereoLines(const std::string& path, const StereoSequence& sequence);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <random>
+#include <sstream>
 #include <unistd.h>
 
 #include "common/json_reader.h"
@@ -70,6 +71,36 @@ TEST(StereoLinesIo, RoundTripIsExact) {
     ExpectSameObservations(read.frames[k].right, written.frames[k].right);
   }
   std::remove(path.c_str());
+}
+
+TEST(StereoLinesIo, StreamedWriterWritesTheSameFileOrNone) {
+  const StereoSequence written = RandomSequence(5, 4, 2);
+  const std::string whole = TempPath("whole.json"), streamed = TempPath("streamed.json");
+  WriteStereoLines(whole, written);
+  {
+    StereoLinesWriter writer(streamed, written.rig);
+    for (const StereoFrame& frame : written.frames) writer.Append(frame);
+    EXPECT_FALSE(std::ifstream(streamed).good()) << "visible before Close()";
+    writer.Close();
+  }
+  std::ifstream a(whole), b(streamed);
+  std::stringstream ta, tb;
+  ta << a.rdbuf();
+  tb << b.rdbuf();
+  EXPECT_EQ(ta.str(), tb.str());
+  // Abandoned (an exception in the producer): neither the file nor its partial copy remains.
+  const std::string abandoned = TempPath("abandoned.json");
+  {
+    StereoLinesWriter writer(abandoned, written.rig);
+    writer.Append(written.frames[0]);
+    StereoFrame late = written.frames[0];
+    late.time -= 1.0;
+    EXPECT_NE(ConfigErrorOf([&] { writer.Append(late); }).find("frames[1].time"), std::string::npos);
+  }
+  EXPECT_FALSE(std::ifstream(abandoned).good());
+  EXPECT_FALSE(std::ifstream(abandoned + ".partial").good());
+  std::remove(whole.c_str());
+  std::remove(streamed.c_str());
 }
 
 TEST(StereoLinesIo, EmptyFramesAndNoFramesRoundTrip) {

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,19 @@ class PoseTracker {
   virtual TrackerOutput Track(const StereoFrame& frame) = 0;
   // Options in effect, every default filled in (saved next to experiment results).
   virtual nlohmann::json Options() const = 0;
+
+  // The pairing with an image front end (frontend/stereo_frontend.h, track_images): asked
+  // after each Track() (and after Reset), whether the next frame should bring newly detected
+  // and stereo-matched lines, under new ids, besides the lines tracked from the frames before.
+  // Detection costs several times a tracked frame, so a tracker says yes only when it will use
+  // them: the stereo EKF trackers when their next frame will take a new reference pair (paper
+  // Sec. 3.3), a frame-to-frame or window tracker when its live line count falls. The default,
+  // yes on every frame, is always correct, only slower.
+  virtual bool WantsNewFeatures() const { return true; }
+  // Hook for seeding the front end's optical flow (real sequences with fast motion): the
+  // tracker's prediction of the left camera's cam_from_world at the next frame, or nothing when
+  // it has none (the default). The front end does not use it yet.
+  virtual std::optional<Rigid3d> PredictNext() const { return std::nullopt; }
 };
 
 struct TrackerInfo {

@@ -61,6 +61,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   ref_from_world_ = Rigid3d();
   filter_.Reset(options_);
   reference_features_ = model_->SetReference(frame);
+  wants_new_features_ = false;
   TrackerOutput out;
   out.status = TrackingStatus::kNewReference;
   out.reason = StatusReason::kFirstFrame;
@@ -367,11 +368,13 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
       options_.count_features == FeatureCount::kGated ? state->used : static_cast<int>(valid_.size());
   const bool few_left = remaining < options_.min_features;
   const bool too_few = few_left || remaining < options_.min_feature_fraction * reference_features_;
+  wants_new_features_ = too_few;
   if (!too_few || model_->CurrentStereoFeatures() <= remaining) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = filter_.cam_from_ref() * ref_from_world_;
   filter_.StartNewReferencePair();
   reference_features_ = model_->SetReference(frame);
+  wants_new_features_ = false;
   ++counters_.new_references;
   // On a frame without an update (possible when counting the lines inside the gate, the
   // paper's reading) the status stays kLost: the pose is still only a prediction.

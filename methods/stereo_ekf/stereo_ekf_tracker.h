@@ -44,6 +44,12 @@ class StereoEkfTracker : public PoseTracker {
   void Reset(const StereoRig& rig) override;
   TrackerOutput Track(const StereoFrame& frame) override;
   nlohmann::json Options() const override;
+  // True before the first frame and when too few features of the reference remain for the
+  // next frame to keep it (the test of NewReferencePair without its "the current frame has
+  // more features" part): the next frame then takes a new reference pair if it brings new
+  // lines. (When the count falls below the threshold between two frames, the new reference
+  // comes one frame later.)
+  bool WantsNewFeatures() const override { return !started_ || wants_new_features_; }
 
   // Counters since Reset, for tests and diagnostics.
   struct Counters {
@@ -108,6 +114,7 @@ class StereoEkfTracker : public PoseTracker {
   bool started_ = false;
   // Robustness policy state: the last frame's health and update size, the noise scale.
   bool healthy_ = true;
+  bool wants_new_features_ = true;
   int previous_inliers_ = 0;
   double noise_scale_sq_ = 1.0;
   int frames_since_start_ = 0;

@@ -1,0 +1,207 @@
+#include "frontend/frontend_audit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace slt {
+namespace {
+
+void Intersect(const std::vector<int>& a, const std::vector<int>& b, std::vector<int>* out) {
+  out->clear();
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(*out));
+}
+
+}  // namespace
+
+ProjectedGroundTruth::ProjectedGroundTruth(const std::vector<Line3d>& lines_in_world, const AuditCriteria& criteria)
+    : lines_(lines_in_world), criteria_(criteria), cos_max_(std::cos(criteria.max_angle_deg * M_PI / 180.0)) {}
+
+void ProjectedGroundTruth::Project(const Rigid3d& cam_from_world, const PinholeCamera& camera, double min_depth_m) {
+  projected_.assign(lines_.size(), Projected());
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    Eigen::Vector3d p = cam_from_world * lines_[i].p, q = cam_from_world * lines_[i].q;
+    if (p.z() < min_depth_m && q.z() < min_depth_m) continue;
+    // Clip at the near plane.
+    if (p.z() < min_depth_m) p = q + (p - q) * ((q.z() - min_depth_m) / (q.z() - p.z()));
+    if (q.z() < min_depth_m) q = p + (q - p) * ((p.z() - min_depth_m) / (p.z() - q.z()));
+    const Eigen::Vector2d a = camera.Project(p), b = camera.Project(q);
+    Projected& out = projected_[i];
+    out.length = (b - a).norm();
+    if (!(out.length > 1e-6) || !std::isfinite(out.length)) continue;
+    out.visible = true;
+    out.a = a;
+    out.dir = (b - a) / out.length;
+    out.normal = Eigen::Vector2d(-out.dir.y(), out.dir.x());
+  }
+}
+
+void ProjectedGroundTruth::LinesUnder(const Segment2d& segment, std::vector<int>* lines) const {
+  lines->clear();
+  const Eigen::Vector2d s = segment.head<2>(), e = segment.tail<2>();
+  const double length = (e - s).norm();
+  if (length < 1e-9) return;
+  const Eigen::Vector2d d = (e - s) / length;
+  for (size_t i = 0; i < projected_.size(); ++i) {
+    const Projected& p = projected_[i];
+    if (!p.visible || std::abs(d.dot(p.dir)) < cos_max_) continue;
+    if (std::abs(p.normal.dot(s - p.a)) > criteria_.max_distance_px ||
+        std::abs(p.normal.dot(e - p.a)) > criteria_.max_distance_px) {
+      continue;
+    }
+    const double t0 = p.dir.dot(s - p.a), t1 = p.dir.dot(e - p.a);
+    if (std::max(t0, t1) < 0.0 || std::min(t0, t1) > p.length) continue;
+    lines->push_back(static_cast<int>(i));
+  }
+}
+
+Eigen::Vector2d ProjectedGroundTruth::EndpointDistances(const Segment2d& segment, int index) const {
+  const Projected& p = projected_.at(index);
+  return {std::abs(p.normal.dot(segment.head<2>() - p.a)), std::abs(p.normal.dot(segment.tail<2>() - p.a))};
+}
+
+ProjectedGroundTruth ProjectedGroundTruthAt(const SimulatedSequence& sequence, int frame, int camera,
+                                            const AuditCriteria& criteria) {
+  ProjectedGroundTruth projected(sequence.lines, criteria);
+  const Rigid3d left_from_world = sequence.ground_truth.at(frame).world_from_cam.Inverse();
+  if (camera == 0) {
+    projected.Project(left_from_world, sequence.true_rig.left);
+  } else {
+    projected.Project(sequence.true_rig.right_from_left * left_from_world, sequence.true_rig.right);
+  }
+  return projected;
+}
+
+namespace {
+const nlohmann::json kVisibleTruth = {{"clip_to_image", true}, {"occlusion", true}};
+}  // namespace
+
+nlohmann::json RenderedRoomConfig(int frames, bool euroc_size) {
+  nlohmann::json config = {{"frames", frames},
+                           {"scene", {{"type", "room"}}},
+                           {"motion", {{"type", "loop"}}},
+                           {"noise", {{"endpoint_px", 0.0}}},
+                           {"observation", kVisibleTruth}};
+  if (euroc_size) {
+    const nlohmann::json camera = {{"fx", 458.654}, {"fy", 458.654}, {"cx", 367.215}, {"cy", 248.375}};
+    config["rig"] = {{"width", 752},
+                     {"height", 480},
+                     {"left", camera},
+                     {"right", camera},
+                     {"right_from_left", {{"R", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {"t", {-0.11, 0, 0}}}}};
+  }
+  return config;
+}
+
+nlohmann::json RenderedCorridorConfig(int frames) {
+  return {{"frames", frames},
+          {"scene", {{"type", "corridor"}}},
+          {"motion", {{"type", "forward"}, {"forward", {{"step_m", 0.01}}}}},
+          {"noise", {{"endpoint_px", 0.0}}},
+          {"observation", kVisibleTruth}};
+}
+
+PairVerdict JudgeStereoPair(const ProjectedGroundTruth& left_truth, const ProjectedGroundTruth& right_truth,
+                            const Segment2d& left, const Segment2d& right, std::vector<int>* common) {
+  std::vector<int> under_left, under_right;
+  left_truth.LinesUnder(left, &under_left);
+  right_truth.LinesUnder(right, &under_right);
+  Intersect(under_left, under_right, common);
+  if (!common->empty()) return PairVerdict::kCorrect;
+  return under_left.empty() && under_right.empty() ? PairVerdict::kUnjudged : PairVerdict::kWrong;
+}
+
+void ScoreDetections(const ProjectedGroundTruth& projected, const std::vector<LineObservation>& visible,
+                     const std::vector<ImageLine>& detections, double min_gt_length_px, DetectionScore* score) {
+  ++score->images;
+  score->detections += static_cast<int>(detections.size());
+  std::vector<int> under;
+  std::vector<std::vector<int>> detections_on(detections.size());
+  for (size_t j = 0; j < detections.size(); ++j) {
+    projected.LinesUnder(detections[j].segment, &detections_on[j]);
+    if (!detections_on[j].empty()) ++score->detections_on_gt;
+  }
+  for (const LineObservation& o : visible) {
+    if ((o.segment.tail<2>() - o.segment.head<2>()).norm() < min_gt_length_px) continue;
+    ++score->gt_segments;
+    bool found = false;
+    for (size_t j = 0; j < detections.size(); ++j) {
+      const std::vector<int>& on = detections_on[j];
+      if (!std::binary_search(on.begin(), on.end(), static_cast<int>(o.id))) continue;
+      found = true;
+      const Eigen::Vector2d d = projected.EndpointDistances(detections[j].segment, static_cast<int>(o.id));
+      score->endpoint_sq_sum += d.squaredNorm();
+      score->endpoints += 2;
+    }
+    if (found) ++score->gt_found;
+  }
+}
+
+FrontEndAudit::FrontEndAudit(const SimulatedSequence& sequence, const AuditCriteria& criteria)
+    : sequence_(sequence), criteria_(criteria), projected_{ProjectedGroundTruth(sequence.lines, criteria),
+                                      ProjectedGroundTruth(sequence.lines, criteria)} {}
+
+void FrontEndAudit::AddFrame(int k, const StereoFrontEnd& front_end, const StereoFrame& frame) {
+  for (int c = 0; c < 2; ++c) projected_[c] = ProjectedGroundTruthAt(sequence_, k, c, criteria_);
+  const FrontEndFrameStats& stats = front_end.last_stats();
+  if (stats.detected) {
+    for (const StereoMatch& m : front_end.last_matches()) {
+      const PairVerdict verdict = JudgeStereoPair(projected_[0], projected_[1], front_end.last_detections(0)[m.left].segment,
+                                                  front_end.last_detections(1)[m.right].segment, &common_);
+      ++result_.matches;
+      if (verdict == PairVerdict::kCorrect) ++result_.matches_correct;
+      if (verdict == PairVerdict::kUnjudged) ++result_.matches_unjudged;
+    }
+  }
+  // Tracks: the lines of the output frame (left and right hold the same ids in the same order).
+  for (auto& [id, track] : tracks_) track.seen = false;
+  for (size_t i = 0; i < frame.left.size(); ++i) {
+    const std::int64_t id = frame.left[i].id;
+    JudgeStereoPair(projected_[0], projected_[1], frame.left[i].segment, frame.right[i].segment, &common_);
+    auto it = tracks_.find(id);
+    if (it == tracks_.end()) {
+      it = tracks_.emplace(id, Track{common_, 0, false, !common_.empty()}).first;
+      ++result_.added;
+      if (!common_.empty()) ++result_.added_correct;
+    } else {
+      std::vector<int> still;
+      Intersect(it->second.lines, common_, &still);
+      it->second.lines.swap(still);
+    }
+    it->second.seen = true;
+    ++it->second.frames;
+    if (!common_.empty()) {
+      const int line = common_.front();
+      result_.endpoint_sq_sum += projected_[0].EndpointDistances(frame.left[i].segment, line).squaredNorm() +
+                                 projected_[1].EndpointDistances(frame.right[i].segment, line).squaredNorm();
+      result_.endpoints += 4;
+    }
+  }
+  std::vector<std::int64_t> ended;
+  for (const auto& [id, track] : tracks_) {
+    if (!track.seen) ended.push_back(id);
+  }
+  for (std::int64_t id : ended) CloseTrack(id);
+}
+
+void FrontEndAudit::CloseTrack(std::int64_t id) {
+  const auto it = tracks_.find(id);
+  if (it == tracks_.end()) return;
+  if (it->second.frames >= 2) {
+    if (!it->second.judged) {
+      ++result_.tracks_unjudged;
+    } else {
+      ++result_.tracks;
+      result_.track_frames += it->second.frames;
+      result_.longest_track = std::max(result_.longest_track, it->second.frames);
+      if (!it->second.lines.empty()) ++result_.tracks_correct;
+    }
+  }
+  tracks_.erase(it);
+}
+
+void FrontEndAudit::Finish() {
+  while (!tracks_.empty()) CloseTrack(tracks_.begin()->first);
+}
+
+}  // namespace slt

@@ -1,0 +1,87 @@
+#include "frontend/frontend_options.h"
+
+namespace slt {
+
+const EnumNames<LineDetectorType>& LineDetectorNames() {
+  static const EnumNames<LineDetectorType> names = {{LineDetectorType::kLsd, "lsd"},
+                                                     {LineDetectorType::kEdlines, "edlines"},
+                                                     {LineDetectorType::kFld, "fld"},
+                                                     {LineDetectorType::kBinaryDescriptor, "binary_descriptor"},
+                                                     {LineDetectorType::kCannyHough, "canny_hough"}};
+  return names;
+}
+
+const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
+  using D = DetectionOptions;
+  static const OptionSchema<D> schema =
+      OptionSchema<D>()
+          .Field("detector", &D::detector, LineDetectorNames(), "line segment detector")
+          .Field("min_length_px", &D::min_length_px, InRange(2.0, 1e4), "shortest segment kept, px")
+          .Field("merge_angle_deg", &D::merge_angle_deg, InRange(0.0, 45.0), "collinear merge: largest angle, deg")
+          .Field("merge_distance_px", &D::merge_distance_px, AtLeast(0.0), "collinear merge: largest endpoint distance to the other line, px")
+          .Field("merge_gap_px", &D::merge_gap_px, AtLeast(0.0), "collinear merge: largest gap along the line, px")
+          .Field("min_contrast", &D::min_contrast, AtLeast(0.0), "smallest grey-level difference between the two sides");
+  return schema;
+}
+
+const OptionSchema<MatchingOptions>& MatchingOptionsSchema() {
+  using M = MatchingOptions;
+  static const OptionSchema<M> schema =
+      OptionSchema<M>()
+          .Field("min_ncc", &M::min_ncc, InRange(-1.0, 1.0), "smallest photometric cross-correlation (paper: 0.6)")
+          .Field("ncc_half_width_px", &M::ncc_half_width_px, InRange(1, 20), "half width of the correlated band, px")
+          .Field("max_msld_distance", &M::max_msld_distance, InRange(0.0, 2.0, "(]"), "largest MSLD descriptor distance")
+          .Field("msld_ratio", &M::msld_ratio, InRange(0.0, 1.0, "(]"), "best / second-best MSLD distance at most (1 = off)")
+          .Field("min_overlap", &M::min_overlap, InRange(0.0, 1.0), "overlap in the epipolar beam, fraction of the shorter segment")
+          .Field("min_disparity_px", &M::min_disparity_px, AnyNumber().Finite(), "smallest disparity of a rectified rig, px")
+          .Field("max_disparity_px", &M::max_disparity_px, AnyNumber().Finite(), "largest disparity of a rectified rig, px")
+          .Field("epipolar_angle_deg", &M::epipolar_angle_deg, InRange(0.0, 45.0), "lines closer to the epipolar direction are matched along it, deg")
+          .Field("epipolar_distance_px", &M::epipolar_distance_px, Positive(), "such a line's right endpoints within this of the left one's epipolar line, px")
+          .Check("max_disparity_px", [](const M& m) {
+            return m.max_disparity_px > m.min_disparity_px ? "" : "must be > min_disparity_px";
+          });
+  return schema;
+}
+
+const OptionSchema<TrackingOptions>& TrackingOptionsSchema() {
+  using T = TrackingOptions;
+  static const OptionSchema<T> schema =
+      OptionSchema<T>()
+          .Field("window_px", &T::window_px, InRange(5, 101), "Lucas-Kanade window side, px")
+          .Field("pyramid_levels", &T::pyramid_levels, InRange(0, 8), "pyramid levels above the image")
+          .Field("point_spacing_px", &T::point_spacing_px, Positive(), "one tracked point every this many px along a segment")
+          .Field("min_points", &T::min_points, InRange(2, 1000), "fewest points per segment")
+          .Field("max_points", &T::max_points, InRange(2, 1000), "most points per segment")
+          .Field("inlier_px", &T::inlier_px, Positive(), "refit: inlier distance to the line, px")
+          .Field("min_inlier_fraction", &T::min_inlier_fraction, InRange(0.0, 1.0), "refit: fewest inliers, fraction of the points")
+          .Field("max_rms_px", &T::max_rms_px, Positive(), "refit: largest RMS distance of the inliers, px")
+          .Field("min_length_px", &T::min_length_px, InRange(2.0, 1e4), "shortest tracked segment kept, px")
+          .Field("min_stereo_overlap", &T::min_stereo_overlap, InRange(0.0, 1.0), "stereo consistency: overlap in the epipolar beam")
+          .Check("max_points", [](const T& t) { return t.max_points >= t.min_points ? "" : "must be >= min_points"; });
+  return schema;
+}
+
+const OptionSchema<FrontEndOptions>& FrontEndOptionsSchema() {
+  using F = FrontEndOptions;
+  static const OptionSchema<F> schema =
+      OptionSchema<F>()
+          .Child("detection", &F::detection, DetectionOptionsSchema(), "line detection")
+          .Child("matching", &F::matching, MatchingOptionsSchema(), "stereo matching")
+          .Child("tracking", &F::tracking, TrackingOptionsSchema(), "temporal tracking")
+          .Field("max_new_lines", &F::max_new_lines, AtLeast(0), "pairs added per detection, longest first (0 = all)")
+          .Field("duplicate_angle_deg", &F::duplicate_angle_deg, InRange(0.0, 45.0), "a new pair within this angle of a tracked line ...")
+          .Field("duplicate_distance_px", &F::duplicate_distance_px, AtLeast(0.0), "... and this distance duplicates it, px");
+  return schema;
+}
+
+FrontEndOptions FrontEndOptionsFromJson(const nlohmann::json& json, const std::string& where) {
+  JsonReader reader(json, where);
+  FrontEndOptions options;
+  FrontEndOptionsSchema().Read(reader, &options);
+  reader.RejectUnknownKeys();
+  return options;
+}
+
+nlohmann::json ToJson(const FrontEndOptions& options) { return FrontEndOptionsSchema().ToJson(options); }
+
+}  // namespace slt

@@ -1,0 +1,109 @@
+// Options of the image front end (docs/frontend.md): line detection, stereo matching and
+// temporal tracking. Every field has a default; the JSON keys, ranges and one-line docs are
+// declared once in FrontEndOptionsSchema() (frontend_options.cc). A `--config frontend.json`
+// holds {"detection": {...}, "matching": {...}, "tracking": {...}}, each key optional.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "common/options.h"
+
+namespace slt {
+
+// The line detectors of OpenCV 4.6 (with contrib) and the paper's Canny-based path.
+enum class LineDetectorType {
+  kLsd,               // cv::createLineSegmentDetector (von Gioi et al., PAMI 2010)
+  kEdlines,           // cv::ximgproc::EdgeDrawing::detectLines (Akinlar & Topal, PRL 2011)
+  kFld,               // cv::ximgproc::FastLineDetector (Lee et al., ICRA 2014)
+  kBinaryDescriptor,  // cv::line_descriptor::BinaryDescriptor::detect (EDLines inside, LBD's detector)
+  kCannyHough,        // Canny edges, then cv::HoughLinesP (paper Sec. 3.1: "the Canny algorithm")
+};
+
+struct DetectionOptions {
+  // LSD by the measurements of docs/frontend.md: EDLines has its recall and is 4x faster, but
+  // its less precise segments gave 3.4 % wrong stereo matches (LSD 0.3 %) and 5x the ATE.
+  LineDetectorType detector = LineDetectorType::kLsd;
+  // Segments shorter than this (after merging) are dropped: too short to track or describe.
+  double min_length_px = 20.0;
+  // Collinear fragments are merged when their directions differ by less than merge_angle_deg,
+  // each one's endpoints lie within merge_distance_px of the other's line, and the gap between
+  // them along the line is at most merge_gap_px (overlapping fragments have a negative gap).
+  double merge_angle_deg = 2.0;
+  double merge_distance_px = 1.5;
+  double merge_gap_px = 6.0;
+  // Mean grey-level difference between the two sides of a segment (sampled 2 px off it) below
+  // which it is dropped: without a brighter side it has no orientation to match by.
+  double min_contrast = 8.0;
+};
+
+struct MatchingOptions {
+  // Photometric cross-correlation of the bands along the two segments (paper Sec. 3.1: > 0.6).
+  double min_ncc = 0.6;
+  // Half width of the band across each segment that the correlation compares, in pixels.
+  int ncc_half_width_px = 3;
+  // Largest Euclidean distance between the two MSLD descriptors (unit vectors, 72 values).
+  double max_msld_distance = 0.6;
+  // The best candidate must be this much closer in MSLD distance than the second best (ratio
+  // test; 1 = off).
+  double msld_ratio = 0.9;
+  // Overlap of the two segments inside each other's epipolar beam, as a fraction of the shorter
+  // one (the beam constraint of Sec. 3.1 asks for a non-empty overlap).
+  double min_overlap = 0.5;
+  // Disparity range of a rectified rig, pixels (left u minus right u at the same row).
+  double min_disparity_px = 0.0;
+  double max_disparity_px = 256.0;
+  // Lines within this angle of the epipolar direction (horizontal in a rectified rig) lie in an
+  // epipolar plane: the beam cannot place them; they match when the right segment lies on the
+  // left one's epipolar line within epipolar_distance_px.
+  double epipolar_angle_deg = 5.0;
+  double epipolar_distance_px = 1.5;
+};
+
+struct TrackingOptions {
+  // Pyramidal Lucas-Kanade (cv::calcOpticalFlowPyrLK): window side and pyramid levels above
+  // the image (0 = the image only).
+  int window_px = 21;
+  int pyramid_levels = 3;
+  // Points sampled along each segment: one every point_spacing_px, at least min_points (else
+  // the segment is too short to refit) and at most max_points.
+  double point_spacing_px = 6.0;
+  int min_points = 6;
+  int max_points = 24;
+  // Robust refit (optim/ransac.h): a point is an inlier within inlier_px of the line. The line
+  // is lost when fewer than min_inlier_fraction of its points are inliers or the RMS distance of
+  // the inliers exceeds max_rms_px.
+  double inlier_px = 1.0;
+  double min_inlier_fraction = 0.6;
+  double max_rms_px = 0.5;
+  // A tracked segment shorter than this (e.g. after clipping at the border) is lost.
+  double min_length_px = 15.0;
+  // A tracked pair is dropped when its segments no longer overlap in each other's epipolar beam
+  // by this fraction (stereo consistency), or leave the disparity range.
+  double min_stereo_overlap = 0.3;
+};
+
+struct FrontEndOptions {
+  DetectionOptions detection;
+  MatchingOptions matching;
+  TrackingOptions tracking;
+  // Detected pairs added per detection, the longest first (0 = all).
+  int max_new_lines = 0;
+  // A new pair is not added when it duplicates a line already tracked: left segments within
+  // this angle and distance (and overlapping).
+  double duplicate_angle_deg = 3.0;
+  double duplicate_distance_px = 3.0;
+};
+
+const OptionSchema<DetectionOptions>& DetectionOptionsSchema();
+const OptionSchema<MatchingOptions>& MatchingOptionsSchema();
+const OptionSchema<TrackingOptions>& TrackingOptionsSchema();
+const OptionSchema<FrontEndOptions>& FrontEndOptionsSchema();
+const EnumNames<LineDetectorType>& LineDetectorNames();
+
+// Reads {"detection": .., "matching": .., "tracking": .., ...}; missing keys keep their
+// defaults; ConfigError "<where>: key '<path>': <reason>" on unknown keys or invalid values.
+FrontEndOptions FrontEndOptionsFromJson(const nlohmann::json& json, const std::string& where);
+nlohmann::json ToJson(const FrontEndOptions& options);
+
+}  // namespace slt

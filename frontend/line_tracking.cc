@@ -1,0 +1,167 @@
+#include "frontend/line_tracking.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <opencv2/video/tracking.hpp>
+
+#include "frontend/line_detection.h"
+
+namespace slt {
+namespace {
+
+// Total least-squares line through points (unit normal, a x + b y + c = 0).
+bool FitLine(const std::vector<Eigen::Vector2d>& points, const int* indices, int count, Eigen::Vector3d* line) {
+  if (count < 2) return false;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (int i = 0; i < count; ++i) mean += points[indices ? indices[i] : i];
+  mean /= count;
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector2d d = points[indices ? indices[i] : i] - mean;
+    scatter += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  const Eigen::Vector2d normal = eig.eigenvectors().col(0);
+  if (eig.eigenvalues()(1) <= 1e-12) return false;
+  *line = Eigen::Vector3d(normal.x(), normal.y(), -normal.dot(mean));
+  return true;
+}
+
+// The RANSAC estimator of a 2-D line from tracked points (optim/ransac.h's concept).
+struct LineEstimator : FixedSampleSize<2> {
+  using Model = Eigen::Vector3d;
+  const std::vector<Eigen::Vector2d>* points;
+  double threshold_sq;
+  int NumData() const { return static_cast<int>(points->size()); }
+  void MinimalSolve(const int* sample, int, std::vector<Model>* models) const {
+    const Eigen::Vector2d& a = (*points)[sample[0]];
+    const Eigen::Vector2d& b = (*points)[sample[1]];
+    const Eigen::Vector2d d = b - a;
+    const double n = d.norm();
+    if (n < 1e-6) return;
+    const Eigen::Vector2d normal(-d.y() / n, d.x() / n);
+    models->emplace_back(normal.x(), normal.y(), -normal.dot(a));
+  }
+  bool Cost(int datum, const Model& line, double* cost) const {
+    const double r = line.head<2>().dot((*points)[datum]) + line.z();
+    *cost = r * r;
+    return true;
+  }
+  double Threshold(int) const { return threshold_sq; }
+  bool LocalOptimize(const std::vector<int>& inliers, Model* model) const {
+    return FitLine(*points, inliers.data(), static_cast<int>(inliers.size()), model);
+  }
+};
+
+}  // namespace
+
+LineFlowTracker::LineFlowTracker(const TrackingOptions& options, std::uint64_t seed)
+    : options_(options), ransac_(seed) {}
+
+void LineFlowTracker::BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid) const {
+  cv::buildOpticalFlowPyramid(grey, *pyramid, cv::Size(options_.window_px, options_.window_px),
+                              options_.pyramid_levels, true);
+}
+
+void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& next,
+                           const std::vector<Segment2d>& segments) {
+  segments_ = segments;
+  first_point_.assign(1, 0);
+  points_.clear();
+  for (const Segment2d& s : segments) {
+    const double length = (s.tail<2>() - s.head<2>()).norm();
+    const int k = std::clamp(static_cast<int>(std::lround(length / options_.point_spacing_px)) + 1,
+                             options_.min_points, options_.max_points);
+    for (int i = 0; i < k; ++i) {
+      const double f = static_cast<double>(i) / (k - 1);
+      points_.emplace_back(static_cast<float>(s[0] + f * (s[2] - s[0])), static_cast<float>(s[1] + f * (s[3] - s[1])));
+    }
+    first_point_.push_back(static_cast<int>(points_.size()));
+  }
+  tracked_points_.clear();
+  status_.clear();
+  if (points_.empty()) return;
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  cv::calcOpticalFlowPyrLK(previous, next, points_, tracked_points_, status_, error_,
+                           cv::Size(options_.window_px, options_.window_px), options_.pyramid_levels, criteria);
+}
+
+LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old, int sampled,
+                           const std::vector<Eigen::Vector2d>& points, const std::vector<double>& positions,
+                           Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace) {
+  LineRefit fit;
+  const int needed = std::max(3, static_cast<int>(std::ceil(options.min_inlier_fraction * sampled)));
+  if (static_cast<int>(points.size()) < needed) return fit;
+  LineEstimator estimator;
+  estimator.points = &points;
+  estimator.threshold_sq = options.inlier_px * options.inlier_px;
+  RansacResult<Eigen::Vector3d>& result = *workspace;
+  ransac->Run(estimator, RansacOptions{50, 0.999}, {}, &result);
+  if (!result.success || static_cast<int>(result.inliers.size()) < needed) return fit;
+  fit.inliers = static_cast<int>(result.inliers.size());
+  const Eigen::Vector3d line = result.model;
+  double sq = 0.0;
+  for (int i : result.inliers) {
+    const double r = line.head<2>().dot(points[i]) + line.z();
+    sq += r * r;
+  }
+  fit.rms_px = std::sqrt(sq / result.inliers.size());
+  if (fit.rms_px > options.max_rms_px) return fit;
+  // Direction along the old segment's orientation, and a point on the new line.
+  const Eigen::Vector2d a = old.head<2>();
+  const double length = (old.tail<2>() - a).norm();
+  Eigen::Vector2d dir(line.y(), -line.x());
+  if (dir.dot(old.tail<2>() - a) < 0) dir = -dir;
+  const Eigen::Vector2d base = -line.z() * line.head<2>();
+  // t' = alpha t + beta by least squares over the inliers.
+  double st = 0, stt = 0, su = 0, stu = 0;
+  for (int i : result.inliers) {
+    const double t = positions[i], u = dir.dot(points[i] - base);
+    st += t;
+    stt += t * t;
+    su += u;
+    stu += t * u;
+  }
+  const double m = static_cast<double>(result.inliers.size());
+  const double det = m * stt - st * st;
+  if (det <= 1e-9) return fit;
+  const double alpha = (m * stu - st * su) / det, beta = (su - alpha * st) / m;
+  if (!(alpha > 0.5 && alpha < 2.0)) return fit;
+  const Eigen::Vector2d p = base + beta * dir, q = base + (alpha * length + beta) * dir;
+  fit.segment = Segment2d(p.x(), p.y(), q.x(), q.y());
+  fit.ok = true;
+  return fit;
+}
+
+void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok) {
+  const int n = static_cast<int>(segments_.size());
+  tracked->assign(n, Segment2d::Zero());
+  ok->assign(n, 0);
+  double rms_sum = 0.0;
+  int kept = 0;
+  for (int s = 0; s < n; ++s) {
+    const Segment2d& old = segments_[s];
+    const double length = (old.tail<2>() - old.head<2>()).norm();
+    const int k = first_point_[s + 1] - first_point_[s];
+    data_.clear();
+    positions_.clear();
+    for (int i = 0; i < k; ++i) {
+      const int p = first_point_[s] + i;
+      if (!status_[p] || !std::isfinite(tracked_points_[p].x) || !std::isfinite(tracked_points_[p].y)) continue;
+      data_.emplace_back(tracked_points_[p].x, tracked_points_[p].y);
+      positions_.push_back(length * i / (k - 1));
+    }
+    LineRefit fit = RefitTrackedLine(options_, old, k, data_, positions_, &ransac_, &result_);
+    if (!fit.ok) continue;
+    if (!ClipSegmentToImage(width, height, &fit.segment)) continue;
+    if ((fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) continue;
+    (*tracked)[s] = fit.segment;
+    (*ok)[s] = 1;
+    rms_sum += fit.rms_px;
+    ++kept;
+  }
+  last_mean_rms_ = kept > 0 ? rms_sum / kept : 0.0;
+}
+
+}  // namespace slt

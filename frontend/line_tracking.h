@@ -1,0 +1,72 @@
+// Temporal tracking of line segments by pyramidal Lucas-Kanade optical flow (paper Sec. 3.1;
+// Lucas & Kanade 1981, Bouguet's pyramidal form in cv::calcOpticalFlowPyrLK), one image stream
+// at a time, in two stages the front end times separately:
+//
+//   Flow:  K points p_k = a + (k / (K-1)) (b - a) along each segment (K from the length and
+//          options.point_spacing_px, within [min_points, max_points]) are tracked from the
+//          previous image into the next one, all segments in one call;
+//   Refit: per segment, a RANSAC line fit to the tracked points (optim/ransac.h; inliers within
+//          inlier_px), refined by total least squares on the inliers; the new endpoints come
+//          from a least-squares map t' = alpha t + beta between the points' positions along the
+//          old segment (t) and along the new line (t'), applied to the old endpoints, so that an
+//          endpoint whose own point was lost still moves with the segment. The segment keeps its
+//          orientation and is clipped to the image. It is lost when fewer than
+//          max(min_inlier_fraction K, 3) points are inliers, the inliers' RMS distance exceeds
+//          max_rms_px, alpha leaves [0.5, 2] or the clipped segment is shorter than
+//          min_length_px.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "frontend/frontend_options.h"
+#include "geometry/line2d.h"
+#include "optim/ransac.h"
+
+namespace slt {
+
+using ImagePyramid = std::vector<cv::Mat>;
+
+// The refit of one segment (stage 2 above, before clipping): ok = false when it is lost.
+struct LineRefit {
+  bool ok = false;
+  Segment2d segment = Segment2d::Zero();  // the new segment, oriented as the old one
+  int inliers = 0;
+  double rms_px = 0.0;  // RMS distance of the inliers to the fitted line
+};
+// `points` are the tracked positions of those of the `sampled` sample points of `old` that the
+// flow kept, `positions` their distances from old's first endpoint along it.
+LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old, int sampled,
+                           const std::vector<Eigen::Vector2d>& points, const std::vector<double>& positions,
+                           Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace);
+
+class LineFlowTracker {
+ public:
+  explicit LineFlowTracker(const TrackingOptions& options, std::uint64_t seed = 1);
+
+  // The pyramid (with derivatives) that Flow() takes, built once per image.
+  void BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid) const;
+  // Stage 1: tracks the sample points of `segments` from `previous` into `next`.
+  void Flow(const ImagePyramid& previous, const ImagePyramid& next, const std::vector<Segment2d>& segments);
+  // Stage 2: the refitted segments (ok[i] = 0 when segment i is lost), for the segments of the
+  // last Flow() call, in an image of the given size.
+  void Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok);
+
+  // The mean RMS refit residual of the segments kept by the last Refit, px (diagnostics).
+  double last_mean_rms() const { return last_mean_rms_; }
+
+ private:
+  TrackingOptions options_;
+  Ransac<Eigen::Vector3d> ransac_;
+  RansacResult<Eigen::Vector3d> result_;
+  std::vector<Segment2d> segments_;
+  std::vector<int> first_point_;  // per segment, index of its first point; size n + 1
+  std::vector<cv::Point2f> points_, tracked_points_;
+  std::vector<uchar> status_;
+  std::vector<float> error_;
+  std::vector<Eigen::Vector2d> data_;
+  std::vector<double> positions_;
+  double last_mean_rms_ = 0.0;
+};
+
+}  // namespace slt

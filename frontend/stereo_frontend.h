@@ -1,0 +1,106 @@
+// The image front end (paper Sec. 3.1): from stereo pictures to the tracked stereo line
+// observations of the `stereo-lines/1` model, one frame at a time.
+//
+// Per stereo pair:
+//   track   the live lines of the previous pair are followed into both images by optical flow
+//           (line_tracking.h; one pyramid per image, kept for the next pair);
+//   filter  refit, loss tests, and stereo consistency: a line lost in one image is dropped in
+//           both, and a pair whose segments leave each other's epipolar beam or the disparity
+//           range is dropped;
+//   and, on the first pair and whenever the caller asks (the tracker wants new features:
+//   PoseTracker::WantsNewFeatures, methods/pose_tracker.h):
+//   detect   line segments in both images (line_detection.h),
+//   describe MSLD descriptors (msld.h),
+//   match    one-to-one stereo matches (stereo_matching.h); matched pairs that do not duplicate
+//            a live line get new ids and join the live lines.
+// The output frame holds every live line under its id in both images (a stereo match), so the
+// same id over frames is one tracked line. Memory does not grow with the sequence: only the
+// live lines and the previous pyramids are kept.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "dataset/stereo_sequence.h"
+#include "frontend/frontend_options.h"
+#include "frontend/line_detection.h"
+#include "frontend/line_tracking.h"
+#include "frontend/msld.h"
+#include "frontend/stereo_matching.h"
+
+namespace slt {
+
+// Seconds spent per stage.
+struct FrontEndStageTimes {
+  double detect = 0.0, describe = 0.0, match = 0.0, track = 0.0, filter = 0.0;
+  double Total() const { return detect + describe + match + track + filter; }
+  FrontEndStageTimes& operator+=(const FrontEndStageTimes& o) {
+    detect += o.detect;
+    describe += o.describe;
+    match += o.match;
+    track += o.track;
+    filter += o.filter;
+    return *this;
+  }
+};
+
+struct FrontEndFrameStats {
+  bool detected = false;   // detection ran on this pair
+  int tracked = 0;         // live lines carried over from the previous pair
+  int lost = 0;            // live lines of the previous pair dropped here
+  int detected_left = 0;   // segments after merge, length and contrast filters
+  int detected_right = 0;
+  int matched = 0;         // stereo matches
+  int added = 0;           // new live lines (matches that duplicate none)
+  int live = 0;            // lines in the output frame
+  FrontEndStageTimes times;
+};
+
+class StereoFrontEnd {
+ public:
+  StereoFrontEnd(const FrontEndOptions& options, const StereoRig& rig);
+
+  // Processes the next stereo pair (8-bit grey, the rig's size). Detection runs when
+  // `detect_new_lines` or on the first pair. Throws std::invalid_argument on a wrong image
+  // size or type.
+  const StereoFrame& Process(const cv::Mat& left, const cv::Mat& right, double time, bool detect_new_lines);
+
+  const FrontEndFrameStats& last_stats() const { return stats_; }
+  // The detections of the last pair where detection ran (for pictures and measurements).
+  const std::vector<ImageLine>& last_detections(int camera) const { return detections_[camera]; }
+  const std::vector<StereoMatch>& last_matches() const { return matches_; }
+  const StereoMatcher& matcher() const { return matcher_; }
+  const FrontEndOptions& options() const { return options_; }
+
+ private:
+  struct LiveLine {
+    std::int64_t id;
+    Segment2d left, right;
+  };
+  void Track(const cv::Mat& left, const cv::Mat& right);
+  void Detect(const cv::Mat& left, const cv::Mat& right);
+  bool DuplicatesLiveLine(const Segment2d& left) const;
+
+  FrontEndOptions options_;
+  StereoRig rig_;
+  std::unique_ptr<LineDetector> detector_;
+  MsldExtractor msld_;
+  StereoMatcher matcher_;
+  LineFlowTracker flow_[2];
+  ImagePyramid previous_[2], current_[2];
+  bool started_ = false;
+  std::int64_t next_id_ = 0;
+  std::vector<LiveLine> live_;
+  StereoFrame frame_;
+  FrontEndFrameStats stats_;
+  // Workspace.
+  std::vector<ImageLine> detections_[2];
+  std::vector<MsldDescriptor> descriptors_[2];
+  std::vector<StereoMatch> matches_;
+  std::vector<Segment2d> segments_[2], tracked_[2];
+  std::vector<char> ok_[2];
+};
+
+}  // namespace slt

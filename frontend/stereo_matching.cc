@@ -1,0 +1,204 @@
+#include "frontend/stereo_matching.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "frontend/image_sampling.h"
+#include "geometry/se3.h"
+
+namespace slt {
+namespace {
+
+Eigen::Vector3d H(const Eigen::Vector2d& p) { return {p.x(), p.y(), 1.0}; }
+
+}  // namespace
+
+StereoGeometry::StereoGeometry(const StereoRig& rig) {
+  const Eigen::Matrix3d& r = rig.right_from_left.rotation;
+  const Eigen::Vector3d& t = rig.right_from_left.translation;
+  Eigen::Matrix3d tx;
+  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  f_ = rig.right.K().inverse().transpose() * tx * r * rig.left.K().inverse();
+  f_ /= f_.norm();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f_, Eigen::ComputeFullV);
+  left_epipole_ = svd.matrixV().col(2);
+  const double b = t.norm();
+  rectified_ = (r - Eigen::Matrix3d::Identity()).norm() < 1e-9 && std::abs(t.y()) < 1e-9 * b &&
+               std::abs(t.z()) < 1e-9 * b && t.x() < 0 && std::abs(rig.left.fy - rig.right.fy) < 1e-9 * rig.left.fy &&
+               std::abs(rig.left.cy - rig.right.cy) < 1e-9;
+}
+
+double StereoGeometry::EpipolarSine(const Segment2d& left) const {
+  const Eigen::Vector2d a = left.head<2>(), b = left.tail<2>();
+  const Eigen::Vector3d epipolar = left_epipole_.cross(H(0.5 * (a + b)));  // the left epipolar line
+  const Eigen::Vector2d dir = (b - a).normalized();
+  const double norm = epipolar.head<2>().norm();
+  if (norm == 0.0) return 1.0;
+  // The line's normal is (a, b): the sine of the angle between the segment and the line is
+  // the cosine between the segment and the normal.
+  return std::abs(dir.dot(epipolar.head<2>()) / norm);
+}
+
+double StereoGeometry::BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine,
+                                   double epipolar_distance_px) const {
+  const Eigen::Vector2d x = left.head<2>(), y = left.tail<2>();
+  const double length = (y - x).norm();
+  if (EpipolarSine(left) < epipolar_sine) {
+    const Eigen::Vector3d l = f_ * H(0.5 * (x + y));
+    const double n = l.head<2>().norm();
+    if (n == 0.0) return 0.0;
+    const double d0 = std::abs(l.dot(H(right.head<2>()))) / n, d1 = std::abs(l.dot(H(right.tail<2>()))) / n;
+    return d0 <= epipolar_distance_px && d1 <= epipolar_distance_px ? 1.0 : 0.0;
+  }
+  const Eigen::Vector3d line = H(x).cross(H(y));
+  const Eigen::Vector2d d = (y - x) / length;
+  double t[2];
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3d q = line.cross(f_.transpose() * H(k == 0 ? right.head<2>() : right.tail<2>()));
+    if (std::abs(q.z()) < 1e-12) return 0.0;
+    t[k] = d.dot(q.head<2>() / q.z() - x);
+  }
+  const double lo = std::min(t[0], t[1]), hi = std::max(t[0], t[1]);
+  const double overlap = std::min(hi, length) - std::max(lo, 0.0);
+  const double shorter = std::min(length, hi - lo);
+  if (overlap <= 0.0 || shorter <= 0.0) return 0.0;
+  return std::min(1.0, overlap / shorter);
+}
+
+bool StereoGeometry::DisparityInRange(const Segment2d& left, const Segment2d& right, double min_px,
+                                      double max_px) const {
+  if (!rectified_) return true;
+  const double lv0 = std::min(left[1], left[3]), lv1 = std::max(left[1], left[3]);
+  const double rv0 = std::min(right[1], right[3]), rv1 = std::max(right[1], right[3]);
+  const double v0 = std::max(lv0, rv0), v1 = std::min(lv1, rv1);
+  if (v1 - v0 >= 1.0) {
+    // The disparity at the middle row of the common rows.
+    const double v = 0.5 * (v0 + v1);
+    const auto u_at = [v](const Segment2d& s) {
+      return s[0] + (s[2] - s[0]) * (v - s[1]) / (s[3] - s[1]);
+    };
+    const double disparity = u_at(left) - u_at(right);
+    return disparity >= min_px && disparity <= max_px;
+  }
+  // Along the rows: some disparity in range must make the u ranges overlap.
+  const double lu0 = std::min(left[0], left[2]), lu1 = std::max(left[0], left[2]);
+  const double ru0 = std::min(right[0], right[2]), ru1 = std::max(right[0], right[2]);
+  return ru1 + max_px >= lu0 && ru0 + min_px <= lu1;
+}
+
+bool StereoGeometry::Transfer(const Eigen::Vector2d& left_point, const Segment2d& right,
+                              Eigen::Vector2d* right_point) const {
+  const Eigen::Vector3d epipolar = f_ * H(left_point);
+  const Eigen::Vector3d line = H(right.head<2>()).cross(H(right.tail<2>()));
+  const Eigen::Vector3d q = epipolar.cross(line);
+  const double scale = epipolar.head<2>().norm() * line.head<2>().norm();
+  if (std::abs(q.z()) < 1e-3 * scale) return false;  // nearly parallel
+  *right_point = q.head<2>() / q.z();
+  return true;
+}
+
+double SegmentCrossCorrelation(const StereoGeometry& geometry, const cv::Mat& left_grey, const cv::Mat& right_grey,
+                               const Segment2d& left, const Segment2d& right, bool along_epipolar, int half_width) {
+  const Eigen::Vector2d la = left.head<2>(), lb = left.tail<2>(), ra = right.head<2>(), rb = right.tail<2>();
+  const double l_length = (lb - la).norm(), r_length = (rb - ra).norm();
+  if (l_length < 1e-9 || r_length < 1e-9) return -1.0;
+  const Eigen::Vector2d ld = (lb - la) / l_length, rd = (rb - ra) / r_length;
+  const Eigen::Vector2d ln(-ld.y(), ld.x()), rn(-rd.y(), rd.x());
+  constexpr int kMaxSamples = 32;
+  const int samples = std::clamp(static_cast<int>(l_length / 2.0), 4, kMaxSamples);
+  double sl = 0, sr = 0, sll = 0, srr = 0, slr = 0;
+  int count = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double f = (i + 0.5) / samples;
+    const Eigen::Vector2d p = la + f * l_length * ld;
+    Eigen::Vector2d q;
+    if (along_epipolar) {
+      q = ra + f * r_length * rd;
+    } else {
+      if (!geometry.Transfer(p, right, &q)) continue;
+      const double t = rd.dot(q - ra);
+      if (t < 0.0 || t > r_length) continue;  // outside the overlap
+    }
+    for (int o = -half_width; o <= half_width; ++o) {
+      const Eigen::Vector2d pl = p + o * ln, pr = q + o * rn;
+      const double a = SampleBilinear<uchar>(left_grey, pl.x(), pl.y());
+      const double b = SampleBilinear<uchar>(right_grey, pr.x(), pr.y());
+      sl += a;
+      sr += b;
+      sll += a * a;
+      srr += b * b;
+      slr += a * b;
+      ++count;
+    }
+  }
+  if (count < 3 * (2 * half_width + 1)) return -1.0;
+  const double ml = sl / count, mr = sr / count;
+  const double vl = sll / count - ml * ml, vr = srr / count - mr * mr;
+  if (vl <= 1e-9 || vr <= 1e-9) return -1.0;
+  return (slr / count - ml * mr) / std::sqrt(vl * vr);
+}
+
+StereoMatcher::StereoMatcher(const MatchingOptions& options, const StereoRig& rig)
+    : options_(options), geometry_(rig), epipolar_sine_(std::sin(options.epipolar_angle_deg * M_PI / 180.0)) {}
+
+void StereoMatcher::Match(const cv::Mat& left_grey, const cv::Mat& right_grey, const std::vector<ImageLine>& left,
+                          const std::vector<MsldDescriptor>& left_descriptors, const std::vector<ImageLine>& right,
+                          const std::vector<MsldDescriptor>& right_descriptors, std::vector<StereoMatch>* matches) {
+  matches->clear();
+  const int nl = static_cast<int>(left.size()), nr = static_cast<int>(right.size());
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  best_left_.assign(nl, kInf);
+  second_left_.assign(nl, kInf);
+  best_left_index_.assign(nl, -1);
+  best_right_.assign(nr, kInf);
+  second_right_.assign(nr, kInf);
+  best_right_index_.assign(nr, -1);
+  candidates_.clear();
+  const float max_distance = static_cast<float>(options_.max_msld_distance);
+  for (int i = 0; i < nl; ++i) {
+    const Segment2d& ls = left[i].segment;
+    const Eigen::Vector2d ld = ls.tail<2>() - ls.head<2>();
+    const double lv0 = std::min(ls[1], ls[3]) - options_.epipolar_distance_px;
+    const double lv1 = std::max(ls[1], ls[3]) + options_.epipolar_distance_px;
+    for (int j = 0; j < nr; ++j) {
+      const Segment2d& rs = right[j].segment;
+      // Cheap rejections first: rows (rectified), orientation, disparity.
+      if (geometry_.rectified() && (std::max(rs[1], rs[3]) < lv0 || std::min(rs[1], rs[3]) > lv1)) continue;
+      if (ld.dot(rs.tail<2>() - rs.head<2>()) <= 0.0) continue;
+      if (!geometry_.DisparityInRange(ls, rs, options_.min_disparity_px, options_.max_disparity_px)) continue;
+      if (geometry_.BeamOverlap(ls, rs, epipolar_sine_, options_.epipolar_distance_px) < options_.min_overlap) continue;
+      const float distance = (left_descriptors[i] - right_descriptors[j]).norm();
+      if (distance < best_left_[i]) {
+        second_left_[i] = best_left_[i];
+        best_left_[i] = distance;
+        best_left_index_[i] = j;
+      } else if (distance < second_left_[i]) {
+        second_left_[i] = distance;
+      }
+      if (distance < best_right_[j]) {
+        second_right_[j] = best_right_[j];
+        best_right_[j] = distance;
+        best_right_index_[j] = i;
+      } else if (distance < second_right_[j]) {
+        second_right_[j] = distance;
+      }
+    }
+  }
+  const float ratio = static_cast<float>(options_.msld_ratio);
+  for (int i = 0; i < nl; ++i) {
+    const int j = best_left_index_[i];
+    if (j < 0 || best_right_index_[j] != i || best_left_[i] > max_distance) continue;  // mutual best
+    if (ratio < 1.0f && (best_left_[i] > ratio * second_left_[i] || best_right_[j] > ratio * second_right_[j])) {
+      continue;
+    }
+    const bool along = geometry_.EpipolarSine(left[i].segment) < epipolar_sine_;
+    const double ncc = SegmentCrossCorrelation(geometry_, left_grey, right_grey, left[i].segment, right[j].segment,
+                                               along, options_.ncc_half_width_px);
+    if (ncc <= options_.min_ncc) continue;
+    matches->push_back({i, j, best_left_[i], static_cast<float>(ncc)});
+  }
+}
+
+}  // namespace slt
