@@ -2,7 +2,7 @@
 //
 //   evaluate --gt gt.tum --est traj.tum [--align none|se3|sim3] [--max-time-diff S]
 //            [--rpe-delta N] [--rpe-all-pairs] [--gt-format tum|kitti] [--est-format tum|kitti]
-//            [--kitti-frame-period S] [--per-frame] [--out metrics.json]
+//            [--kitti-frame-period S] [--per-frame] [--covariance frames.csv] [--out metrics.json]
 //
 // Prints the metrics as JSON on stdout (and to --out). Exit codes: 0 success, 1 unreadable or
 // unusable data, 2 bad command line.
@@ -14,6 +14,7 @@
 
 #include "common/json_reader.h"
 #include "dataset/trajectory.h"
+#include "evaluation/consistency.h"
 #include "evaluation/metrics.h"
 
 namespace {
@@ -49,6 +50,10 @@ int main(int argc, char** argv) {
   app.add_option("--rpe-delta", options.rpe_delta_frames, "RPE step in frames")->capture_default_str();
   app.add_flag("--rpe-all-pairs", options.rpe_all_pairs, "RPE over every pair (i, i + delta), not only i = k delta");
   app.add_flag("--per-frame", per_frame, "Include the per-frame error curve");
+  std::string covariance_path;
+  app.add_option("--covariance", covariance_path,
+                 "The tracker's `track --log` file: adds the consistency of its pose covariance (NEES, errors "
+                 "beyond 3 sigma; no alignment)");
   app.add_option("--out", out_path, "Also write the JSON to this file");
 
   try {
@@ -80,7 +85,15 @@ int main(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(est_path + " against " + gt_path + ": " + e.what());
     }
-    const nlohmann::json metrics = slt::ToJson(errors, per_frame);
+    nlohmann::json metrics = slt::ToJson(errors, per_frame);
+    if (!covariance_path.empty()) {
+      try {
+        metrics["consistency"] = slt::ToJson(slt::EvaluateConsistency(
+            gt, est, slt::ReadLogCovariances(covariance_path), options.max_time_diff_s));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(covariance_path + ": " + e.what());
+      }
+    }
     if (!out_path.empty()) slt::WriteJsonFile(out_path, metrics);
     std::cout << metrics.dump(2) << "\n";
     return 0;

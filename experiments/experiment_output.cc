@@ -39,6 +39,12 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"features_available", "Features available per frame"},
     {"new_references", "New reference pairs"},
     {"lost_frames", "Lost frames"},
+    {"max_trans_err_m", "Max translation error (m)"},
+    {"degraded_frames", "Degraded frames"},
+    {"nees", "NEES (6 dof, mean)"},
+    {"nees_rot", "NEES orientation (3 dof)"},
+    {"nees_pos", "NEES position (3 dof)"},
+    {"beyond_3sigma_pct", "Errors beyond 3 sigma (%)"},
 };
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};

@@ -31,6 +31,12 @@ enum TrialMetric {
   kFeaturesAvailable,  // mean over frames of TrackerOutput::features_available
   kNewReferences,       // frames after the first with status kNewReference (new reference pairs)
   kLostFrames,         // frames with status kLost
+  kMaxTransErrM,       // largest translation error over all frames (ATE max)
+  kDegradedFrames,     // frames with status kDegraded
+  kNees,               // mean over frames of the 6-dof NEES of the reported covariance
+  kNeesRot,            // the same, orientation only (3 dof)
+  kNeesPos,            // the same, position only (3 dof)
+  kBeyond3SigmaPct,    // % of (frame, axis) errors beyond 3 reported sigma (6 axes per frame)
   kNumTrialMetrics
 };
 

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "common/csv.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--output,-o", output, "Trajectory to write, TUM format");
   app.add_option("--config,-c", config_path, "Tracker options, JSON (missing keys keep their defaults)");
   app.add_option("--kitti", kitti_path, "Also write the trajectory in KITTI format");
-  app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, features, time per frame");
+  app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, features, time per frame, pose covariance");
   app.add_flag("--list", list, "List the registered trackers and exit");
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
   try {
@@ -58,8 +59,14 @@ int main(int argc, char** argv) {
     Trajectory trajectory;
     trajectory.reserve(sequence.frames.size());
     std::ostringstream log;
-    log << "frame,time,status,features_available,features_used,time_us\n";
-    int counts[3] = {0, 0, 0};
+    // The covariance of each pose (TrackerOutput::covariance, docs/formats.md): its upper
+    // triangle, row by row, cov_<i><j> for i <= j; empty when the tracker has none.
+    log << "frame,time,status,features_available,features_used,time_us";
+    for (int i = 0; i < 6; ++i) {
+      for (int j = i; j < 6; ++j) log << ",cov_" << i << j;
+    }
+    log << "\n";
+    int counts[kNumTrackingStatuses] = {0, 0, 0, 0};
     double total_us = 0.0;
     for (size_t k = 0; k < run.size(); ++k) {
       const TrackerOutput& out = run[k].output;
@@ -68,13 +75,20 @@ int main(int argc, char** argv) {
       ++counts[static_cast<int>(out.status)];
       trajectory.push_back({time, out.cam_from_world.Inverse()});
       log << k << "," << time << "," << TrackingStatusName(out.status) << "," << out.features_available << ","
-          << out.features_used << "," << run[k].time_us << "\n";
+          << out.features_used << "," << run[k].time_us;
+      for (int i = 0; i < 6; ++i) {
+        for (int j = i; j < 6; ++j) {
+          log << "," << (out.has_covariance ? FormatDouble(out.covariance(i, j)) : std::string());
+        }
+      }
+      log << "\n";
     }
     WriteTumTrajectory(output, trajectory);
     if (!kitti_path.empty()) WriteKittiTrajectory(kitti_path, trajectory);
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
-    std::fprintf(stderr, "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost), %.1f us per frame\n",
-                 method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2],
+    std::fprintf(stderr,
+                 "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost, %d degraded), %.1f us per frame\n",
+                 method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2], counts[3],
                  sequence.frames.empty() ? 0.0 : total_us / sequence.frames.size());
     return 0;
   } catch (const CLI::Error& e) {

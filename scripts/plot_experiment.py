@@ -296,8 +296,12 @@ def plot_trajectory(exp, plot):
             continue
         est = read_tum(os.path.join(tdir, by_method[method]["estimate"]))
         t = trials.get((method, "0", trial), {})
-        label = "%s: start-end gap %.3f m (%.1f %% of path)" % (
-            method, number(t.get("end_gap_m")), number(t.get("drift_pct")))
+        # The start-end gap only says where the loop closed; ATE and the maximum error say how far
+        # off the track was along the way (docs/experiments.md).
+        pct = lambda key: 100.0 * number(t.get(key)) / path_length if path_length > 0 else float("nan")
+        label = "%s: ATE %.3f m (%.1f %%), max %.3f m (%.1f %%), start-end gap %.3f m (%.1f %%)" % (
+            method, number(t.get("ate_trans_m")), pct("ate_trans_m"), number(t.get("max_trans_err_m")),
+            pct("max_trans_err_m"), number(t.get("end_gap_m")), number(t.get("drift_pct")))
         curves.append((label, est, dict(color=COLORS[i % len(COLORS)], linewidth=1.3)))
 
     # Views: plan = (x, z), side = (z, height = -y; the camera's y points down).
