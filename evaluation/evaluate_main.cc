@@ -4,6 +4,7 @@
 //            [--rpe-all-pairs] [--gt-format tum|kitti] [--est-format tum|kitti]
 //            [--kitti-frame-period S] [--format table|json] [--json FILE] [--per-frame]
 //            [--plot FILE.png] [--strict]
+//            [--covariance LOG]
 //
 // GT and EST may also be given as --gt and --est. Prints a table of the errors (evo's
 // statistics with units) or, with --format json, the JSON that --json writes. Warns when fewer
@@ -21,6 +22,7 @@
 #include "common/json_reader.h"
 #include "common/script_runner.h"
 #include "dataset/trajectory.h"
+#include "evaluation/consistency.h"
 #include "evaluation/metrics.h"
 #include "evaluation/report.h"
 
@@ -103,6 +105,10 @@ int main(int argc, char** argv) {
   app.add_flag("--per-frame", per_frame, "Include the per-frame error curve in the JSON");
   app.add_option("--plot", plot_path, "Draw plan and side views and the error against time to this PNG");
   app.add_flag("--strict", strict, "Fail when fewer than 95 % of either trajectory's poses are associated");
+  std::string covariance_path;
+  app.add_option("--covariance", covariance_path,
+                 "The tracker's `track --log` file: adds the consistency of its pose covariance (NEES, errors "
+                 "beyond 3 sigma; no alignment)");
 
   try {
     app.parse(argc, argv);
@@ -148,6 +154,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "evaluate: warning: %s against %s: %s\n", est_path.c_str(), gt_path.c_str(), warning.c_str());
     }
     nlohmann::json metrics = slt::ToJson(errors, per_frame);
+    if (!covariance_path.empty()) {
+      try {
+        metrics["consistency"] = slt::ToJson(slt::EvaluateConsistency(
+            gt, est, slt::ReadLogCovariances(covariance_path), options.max_time_diff_s));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(covariance_path + ": " + e.what());
+      }
+    }
     metrics["warnings"] = warning.empty() ? nlohmann::json::array() : nlohmann::json::array({warning});
     // Every output or none: the plot (the step most likely to fail) first.
     if (!plot_path.empty()) Plot(plot_path, gt, est, errors, gt_path, est_path);

@@ -50,6 +50,11 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"features_unmatched", "Reference features not matched in both images, per frame"},
     {"features_degenerate", "Degenerate features per frame"},
     {"features_outside_gate", "Measurable features outside the gate, per frame"},
+    {"degraded_frames", "Degraded frames"},
+    {"nees", "NEES (6 dof, mean)"},
+    {"nees_rot", "NEES orientation (3 dof)"},
+    {"nees_pos", "NEES position (3 dof)"},
+    {"beyond_3sigma_pct", "Errors beyond 3 sigma (%)"},
 };
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};

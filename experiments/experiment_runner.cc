@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "common/random.h"
+#include "evaluation/consistency.h"
 #include "evaluation/statistics.h"
 #include "methods/pose_tracker.h"
 #include "simulator/simulator.h"
@@ -97,6 +98,9 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   double unmatched = 0.0, degenerate = 0.0, outside_gate = 0.0;
   int new_references = 0, lost = 0;
   int by_reason[kNumStatusReasons] = {};
+  int degraded = 0;
+  std::vector<Matrix6d> covariances;
+  bool has_covariance = true;
   for (size_t k = 0; k < run.size(); ++k) {
     const TrackerOutput& out = run[k].output;
     times_us.push_back(run[k].time_us);
@@ -108,6 +112,9 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
     ++by_reason[static_cast<int>(out.reason)];
     if (k > 0 && out.status == TrackingStatus::kNewReference) ++new_references;
     if (out.status == TrackingStatus::kLost) ++lost;
+    if (out.status == TrackingStatus::kDegraded) ++degraded;
+    has_covariance = has_covariance && out.has_covariance;
+    covariances.push_back(out.covariance);
     r.finite = r.finite && Finite(out.cam_from_world);
     estimate.push_back({sequence.frames[k].time, out.cam_from_world.Inverse()});
   }
@@ -133,6 +140,7 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   m[kFeaturesUnmatched] = unmatched / n;
   m[kFeaturesDegenerate] = degenerate / n;
   m[kFeaturesOutsideGate] = outside_gate / n;
+  m[kDegradedFrames] = degraded;
   m[kPathLengthM] = PathLength(sim.ground_truth);
   if (r.finite && !estimate.empty()) {
     EvaluationOptions options;  // alignment none: both worlds are the first left camera
@@ -153,6 +161,15 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
     m[kEndGapM] = (estimate.back().world_from_cam.translation - estimate.front().world_from_cam.translation).norm();
     if (m[kPathLengthM] > 0.0) m[kDriftPct] = 100.0 * m[kEndGapM] / m[kPathLengthM];
     if (config.per_frame_curves) r.curve = errors.per_frame;
+    if (has_covariance) {
+      // The first frame defines the world: its covariance is zero and it is skipped.
+      const ConsistencyErrors consistency =
+          EvaluateConsistency(sim.ground_truth, estimate, covariances, options.max_time_diff_s);
+      m[kNees] = consistency.nees.mean;
+      m[kNeesRot] = consistency.nees_rot.mean;
+      m[kNeesPos] = consistency.nees_pos.mean;
+      m[kBeyond3SigmaPct] = 100.0 * consistency.beyond_3sigma_fraction;
+    }
   }
   if (job.trial < config.save_trajectories) {
     r.ground_truth = sim.ground_truth;

@@ -45,6 +45,11 @@ enum TrialMetric {
   kFeaturesUnmatched,      // not observed in both images
   kFeaturesDegenerate,     // no usable measurement
   kFeaturesOutsideGate,    // measurable, not in the update
+  kDegradedFrames,     // frames with status kDegraded
+  kNees,               // mean over frames of the 6-dof NEES of the reported covariance
+  kNeesRot,            // the same, orientation only (3 dof)
+  kNeesPos,            // the same, position only (3 dof)
+  kBeyond3SigmaPct,    // % of (frame, axis) errors beyond 3 reported sigma (6 axes per frame)
   kNumTrialMetrics
 };
 

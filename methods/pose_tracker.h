@@ -2,8 +2,9 @@
 //
 // A tracker is given the stereo rig once, then one stereo frame of line observations at a
 // time, and answers with the current pose of the left camera in the world (the left camera at
-// the first frame) and a status. Trackers never return non-finite poses: when they cannot
-// measure a frame they say so in the status and keep predicting.
+// the first frame), the covariance of that pose and a status. Trackers never return non-finite
+// poses: when they cannot measure a frame, or cannot vouch for what they measured, they say so
+// in the status and keep predicting.
 //
 // Adding a tracker: one folder under methods/ with a library target, plus one line in
 // methods/registry.cc. The shared suite in tests/tracker_suite_test.cc and every experiment
@@ -20,6 +21,7 @@
 #include "common/options.h"
 #include "dataset/stereo_sequence.h"
 #include "geometry/rigid3.h"
+#include "geometry/se3.h"
 
 namespace slt {
 
@@ -27,6 +29,9 @@ enum class TrackingStatus {
   kTracking,       // the frame was measured and the pose updated
   kNewReference,   // a new reference pair starts here (the first frame, or too few features left)
   kLost,           // too few usable features: the pose is a prediction only
+  kDegraded,       // measured, but the tracker cannot vouch for the pose: the measurements
+                   // disagree with each other or with the prediction beyond their noise, or
+                   // leave a direction of the pose unconstrained (docs/formats.md, status)
 };
 
 inline const char* TrackingStatusName(TrackingStatus status) {
@@ -34,9 +39,12 @@ inline const char* TrackingStatusName(TrackingStatus status) {
     case TrackingStatus::kTracking: return "tracking";
     case TrackingStatus::kNewReference: return "new_reference";
     case TrackingStatus::kLost: return "lost";
+    case TrackingStatus::kDegraded: return "degraded";
   }
   return "unknown";
 }
+
+constexpr int kNumTrackingStatuses = 4;
 
 // Why a frame has the status it has (kNone: tracking normally).
 enum class StatusReason {
@@ -67,6 +75,12 @@ inline const char* StatusReasonName(StatusReason reason) {
 
 struct TrackerOutput {
   Rigid3d cam_from_world;  // left camera at this frame; world = left camera at the first frame
+  // Covariance of cam_from_world in the trackers' perturbation convention (docs/conventions.md):
+  // true cam_from_world = ExpSE3(d) * cam_from_world, d = [translation; rotation] in the current
+  // camera frame (metres, radians), d ~ N(0, covariance). Only meaningful when has_covariance;
+  // a tracker without a covariance leaves it zero.
+  Matrix6d covariance = Matrix6d::Zero();
+  bool has_covariance = false;
   TrackingStatus status = TrackingStatus::kTracking;
   StatusReason reason = StatusReason::kNone;  // a lost frame's reason wins over a new reference's
   int features_available = 0;  // features with a usable measurement this frame

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "common/csv.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("--output,-o", output, "Trajectory to write, TUM format");
   app.add_option("--config,-c", config_path, "Tracker options, JSON (missing keys keep their defaults)");
   app.add_option("--kitti", kitti_path, "Also write the trajectory in KITTI format");
-  app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, reason, features used and left out by reason, time per frame");
+  app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, reason, features used and left out by reason, time per frame, pose covariance");
   app.add_flag("--list", list, "List the registered trackers and exit");
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
   app.add_flag("--list-options", list_options, "List the tracker's options (key, default, allowed values, doc) and exit");
@@ -65,9 +66,15 @@ int main(int argc, char** argv) {
     Trajectory trajectory;
     trajectory.reserve(sequence.frames.size());
     std::ostringstream log;
+    // The covariance of each pose (TrackerOutput::covariance, docs/formats.md): its upper
+    // triangle, row by row, cov_<i><j> for i <= j; empty when the tracker has none.
     log << "frame,time,status,reason,features_available,features_used,features_unmatched,features_degenerate,"
-           "features_outside_gate,time_us\n";
-    int counts[3] = {0, 0, 0};
+           "features_outside_gate,time_us";
+    for (int i = 0; i < 6; ++i) {
+      for (int j = i; j < 6; ++j) log << ",cov_" << i << j;
+    }
+    log << "\n";
+    int counts[kNumTrackingStatuses] = {0, 0, 0, 0};
     int by_reason[kNumStatusReasons] = {};
     long unmatched = 0, degenerate = 0, outside_gate = 0;
     double total_us = 0.0;
@@ -83,13 +90,20 @@ int main(int argc, char** argv) {
       trajectory.push_back({time, out.cam_from_world.Inverse()});
       log << k << "," << time << "," << TrackingStatusName(out.status) << "," << StatusReasonName(out.reason) << ","
           << out.features_available << "," << out.features_used << "," << out.features_unmatched << ","
-          << out.features_degenerate << "," << out.features_outside_gate << "," << run[k].time_us << "\n";
+          << out.features_degenerate << "," << out.features_outside_gate << "," << run[k].time_us;
+      for (int i = 0; i < 6; ++i) {
+        for (int j = i; j < 6; ++j) {
+          log << "," << (out.has_covariance ? FormatDouble(out.covariance(i, j)) : std::string());
+        }
+      }
+      log << "\n";
     }
     WriteTumTrajectory(output, trajectory);
     if (!kitti_path.empty()) WriteKittiTrajectory(kitti_path, trajectory);
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
-    std::fprintf(stderr, "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost), %.1f us per frame\n",
-                 method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2],
+    std::fprintf(stderr,
+                 "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost, %d degraded), %.1f us per frame\n",
+                 method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2], counts[3],
                  sequence.frames.empty() ? 0.0 : total_us / sequence.frames.size());
     // Why: frames by reason (the first frame's aside), then the features left out.
     std::string reasons;

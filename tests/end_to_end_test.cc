@@ -170,6 +170,7 @@ TEST_F(EndToEnd, EvaluatePlotsAndSimulateWritesItsScene) {
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
   r = RunCommand(Bin("evaluate") + " " + Path("run/gt.tum") + " " + Path("run/gt.tum") + " --plot " + Path("p.jpg"));
   EXPECT_EQ(r.exit_code, 2) << r.output;
+}
 
 double AteRmse(const std::string& metrics_path) {
   return ReadJsonFile(metrics_path).at("ate_trans_m").at("rmse").get<double>();

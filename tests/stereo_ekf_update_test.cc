@@ -137,6 +137,10 @@ TEST_P(FirstUpdate, IsTheKalmanUpdateOfEquation19) {
   EXPECT_LT((delta - expected_delta).norm(), 1e-9 * expected_delta.norm()) << delta.transpose() << "\n"
                                                                           << expected_delta.transpose();
   EXPECT_LT((tracker.filter().PoseCovariance() - expected_covariance).norm(), 1e-9 * expected_covariance.norm());
+  // Still relative to the first reference, which is the world: the reported covariance is the
+  // filter's.
+  ASSERT_TRUE(out.has_covariance);
+  EXPECT_LT((out.covariance - expected_covariance).norm(), 1e-9 * expected_covariance.norm());
   // The update moved toward the truth (it is not the prediction).
   EXPECT_LT((delta - d_true).norm(), 0.5 * d_true.norm());
 }
@@ -329,6 +333,57 @@ TEST(FirstUpdate, HealthCountsTheRowsMeasured) {
     tracker.Track(StereoFrame{2.0 / 30.0, {}, {}});
     EXPECT_EQ(tracker.counters().robust_solves, per_feature > 4.0 ? 1 : 0);
   }
+}
+
+TEST(FirstUpdate, DegradedWhenAPoseDirectionIsNotMeasured) {
+  // Features with a zero Jacobian measure nothing about the pose (H = 0): the update runs, its
+  // cost is healthy, but the pose is the prior's alone, and the tracker says so; report_degraded
+  // off (the paper preset's choice) keeps the paper's statuses.
+  for (const bool report : {true, false}) {
+    StereoEkfOptions options = PaperFilter(true);
+    options.report_degraded = report;
+    StereoEkfTracker tracker(options, TwoRowFeatures(std::vector<double>(5, 1.0)), nlohmann::json::object());
+    const TrackerOutput out = TrackFirstUpdate(&tracker);
+    ASSERT_EQ(out.features_used, 5);
+    EXPECT_EQ(out.status, report ? TrackingStatus::kDegraded : TrackingStatus::kTracking);
+    EXPECT_EQ(tracker.counters().degraded_frames, report ? 1 : 0);
+  }
+  // Random Jacobians measure every direction: tracking.
+  StereoEkfOptions options = PaperFilter(true);
+  options.report_degraded = true;
+  StereoEkfTracker tracker(options, LinearFeatureModel(5, TrueDelta(), 7), nlohmann::json::object());
+  EXPECT_EQ(TrackFirstUpdate(&tracker).status, TrackingStatus::kTracking);
+}
+
+TEST(ReportedCovariance, ChainsTheReferencePairsCovariance) {
+  // New reference pairs whenever the current pair has a line the reference lacks (more features
+  // required than there are; the room brings lines into view): after a new reference at frame
+  // j, the world covariance of a later frame k is the filter's relative covariance plus frame
+  // j's, moved by the adjoint of the relative pose, so it exceeds the latter in the Loewner
+  // order although the filter restarted from an exact reference.
+  const SimulatedSequence sim = Simulate(SimulationConfigFromJson(
+      {{"frames", 12}, {"scene", {{"type", "room"}}}, {"observation", {{"clip_to_image", true}}},
+       {"noise", {{"endpoint_px", 1.0}}}},
+      "test"));
+  auto tracker = CreateTracker("trifocal_line_ekf", {{"filter", {{"min_features", 1000}}}});
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  ASSERT_TRUE(run.outputs[0].has_covariance);
+  EXPECT_TRUE(run.outputs[0].covariance.isZero());  // the first frame defines the world
+  int reference = -1, checked = 0;
+  for (size_t k = 1; k < run.outputs.size(); ++k) {
+    SCOPED_TRACE(testing::Message() << "frame " << k << ", reference " << reference);
+    const TrackerOutput& out = run.outputs[k];
+    if (reference >= 1) {
+      const TrackerOutput& ref = run.outputs[reference];
+      const Matrix6d ad = Adjoint(out.cam_from_world * ref.cam_from_world.Inverse());
+      const Matrix6d increase = out.covariance - ad * ref.covariance * ad.transpose();
+      const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (increase + increase.transpose()));
+      EXPECT_GT(eigen.eigenvalues()(0), 0.0);
+      ++checked;
+    }
+    if (out.status == TrackingStatus::kNewReference) reference = static_cast<int>(k);
+  }
+  EXPECT_GE(checked, 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values(FilterState::kVelocity, FilterState::kPoseVelocity),

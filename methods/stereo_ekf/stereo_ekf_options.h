@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/chi_square.h"  // ChiSquareQuantile, for the gate
 #include "common/json_reader.h"
 #include "common/options.h"
 
@@ -79,6 +80,13 @@ struct StereoEkfOptions {
   double min_feature_fraction = 0.5;
   FeatureCount count_features = FeatureCount::kMeasurable;
 
+
+  // Status kDegraded (methods/pose_tracker.h) for a frame whose update the tracker cannot vouch
+  // for: the posterior cost above its chi-square bound (the measurements disagree with each other
+  // or with the prediction), or this frame's measurements leaving a direction of the pose
+  // unconstrained (H not positive definite). The next frame that passes both is kTracking again.
+  bool report_degraded = true;
+
   double GateThreshold(int dimension = 4) const;  // the g in use for a feature of `dimension` rows
   // Throws ConfigError "<where>: key '<path>.<field>': ...".
   void Check(const std::string& where = "stereo EKF options", const std::string& path = "") const;
@@ -92,15 +100,12 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema();
 // constant-velocity prediction while nothing is measured (no velocity decay).
 void DisableRobustness(StereoEkfOptions* options);
 // The paper's filter (Sec. 3.3-4): 6-D velocity state, one EKF update, no robustness policy,
-// new reference pairs counting the lines that survive the gate (eq. 20).
+// new reference pairs counting the lines that survive the gate (eq. 20), no degraded status.
 void ApplyPaperPreset(StereoEkfOptions* options);
 
 // Reads the fields present in `reader` (keeps defaults for the others).
 void ReadStereoEkfOptions(JsonReader& reader, StereoEkfOptions* options);
 nlohmann::json StereoEkfOptionsToJson(const StereoEkfOptions& options);
 
-// Quantile of the chi-square distribution with `dof` degrees of freedom (Wilson-Hilferty with
-// a Newton polish; accurate to 1e-6 relative for dof >= 1 and p in [0.5, 1 - 1e-9]).
-double ChiSquareQuantile(double probability, int dof);
 
 }  // namespace slt

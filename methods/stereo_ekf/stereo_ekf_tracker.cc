@@ -1,6 +1,7 @@
 #include "methods/stereo_ekf/stereo_ekf_tracker.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -25,6 +26,19 @@ constexpr double kStandardNormal999 = 3.09;
 // noise-scale adaptation was measured. Kept: the exact value changes almost every trial of every
 // experiment with adaptive noise (last digits of the errors), and every committed result with it.
 constexpr double kChiSquare4Median = 3.357;
+
+// True when the information H measures every direction of the pose (else the prior alone holds
+// some): the smallest eigenvalue of H scaled to a unit diagonal, D^-1/2 H D^-1/2 (free of the
+// mixed m / rad units), above kMinRelativeInformation.
+constexpr double kMinRelativeInformation = 1e-8;
+bool ConstrainsEveryDirection(const Matrix6d& information) {
+  const Vector6d diagonal = information.diagonal();
+  if (!(diagonal.minCoeff() > 0.0) || !information.allFinite()) return false;
+  const Vector6d scale = diagonal.cwiseSqrt().cwiseInverse();
+  const Matrix6d normalized = scale.asDiagonal() * information * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(normalized, Eigen::EigenvaluesOnly);
+  return eigen.info() == Eigen::Success && eigen.eigenvalues()(0) > kMinRelativeInformation;
+}
 
 }  // namespace
 
@@ -59,6 +73,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   previous_inliers_ = 0;
   noise_scale_sq_ = 1.0;
   ref_from_world_ = Rigid3d();
+  ref_from_world_covariance_.setZero();
   filter_.Reset(options_);
   reference_features_ = model_->SetReference(frame);
   wants_new_features_ = false;
@@ -66,7 +81,18 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   out.status = TrackingStatus::kNewReference;
   out.reason = StatusReason::kFirstFrame;
   out.features_available = reference_features_;
+  SetOutputPose(&out);
   return out;
+}
+
+void StereoEkfTracker::SetOutputPose(TrackerOutput* out) const {
+  const Rigid3d& cam_from_ref = filter_.cam_from_ref();
+  out->cam_from_world = cam_from_ref * ref_from_world_;
+  const Matrix6d ad = Adjoint(cam_from_ref);
+  Matrix6d p = filter_.PoseCovariance();
+  p.noalias() += ad * ref_from_world_covariance_ * ad.transpose();
+  out->covariance = 0.5 * (p + p.transpose());
+  out->has_covariance = true;
 }
 
 void StereoEkfTracker::Gate(const StereoFrame& frame, FrameState* state) {
@@ -252,6 +278,7 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     if (solver.SquaredNorm(step) < options_.iteration_tolerance * options_.iteration_tolerance) break;
   }
   ++counters_.updates;
+  frame_information_ = ne.FullHessian();
   filter_.Correct(delta, solver.Inverse(), prior_information);
   // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
   const Vector6d step = delta - delta_k;
@@ -343,7 +370,12 @@ void StereoEkfTracker::Assess(FrameState* state) {
     const int rows = MeasuredRows();
     healthy_ = state->cost <= HealthyCost(rows);
     AdaptNoiseScale(rows);
+    const bool constrained = ConstrainsEveryDirection(frame_information_);
     out.status = TrackingStatus::kTracking;
+    if (options_.report_degraded && (!healthy_ || !constrained)) {
+      ++counters_.degraded_frames;
+      out.status = TrackingStatus::kDegraded;
+    }
   }
   if (!filter_.cam_from_ref().rotation.allFinite() || !filter_.cam_from_ref().translation.allFinite() ||
       !filter_.velocity().allFinite() || !filter_.covariance().allFinite()) {
@@ -360,7 +392,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
   previous_inliers_ = state->used;
   out.features_used = state->used;
   out.features_outside_gate = state->valid - state->used;
-  out.cam_from_world = filter_.cam_from_ref() * ref_from_world_;
+  SetOutputPose(&out);
 }
 
 void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* state) {
@@ -371,7 +403,8 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   wants_new_features_ = too_few;
   if (!too_few || model_->CurrentStereoFeatures() <= remaining) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
-  ref_from_world_ = filter_.cam_from_ref() * ref_from_world_;
+  ref_from_world_ = state->out.cam_from_world;
+  ref_from_world_covariance_ = state->out.covariance;
   filter_.StartNewReferencePair();
   reference_features_ = model_->SetReference(frame);
   wants_new_features_ = false;

@@ -58,6 +58,7 @@ class StereoEkfTracker : public PoseTracker {
     int robust_solves = 0;    // RANSAC runs
     int reseeds = 0;          // filter re-seeded from a RANSAC solve
     int lost_frames = 0;
+    int degraded_frames = 0;
     int updates = 0;            // measurement updates
     int update_iterations = 0;  // Gauss-Newton iterations over all updates (>= updates)
   };
@@ -87,6 +88,11 @@ class StereoEkfTracker : public PoseTracker {
   void Update(FrameState* state);
   void Assess(FrameState* state);
   void NewReferencePair(const StereoFrame& frame, FrameState* state);
+  // Pose and covariance of the output in the world: cam_from_world = cam_from_ref *
+  // ref_from_world, so with independent errors (left perturbations, docs/conventions.md)
+  //   P_world = P_rel + Ad(cam_from_ref) P_ref_from_world Ad(cam_from_ref)^T,
+  // P_rel the filter's pose covariance.
+  void SetOutputPose(TrackerOutput* out) const;
 
   // Iterated update on `inliers_`, with the filter's pose as prior mean, starting at
   // `linearization`; `blocks_at_linearization` says that features_ were evaluated there.
@@ -120,6 +126,13 @@ class StereoEkfTracker : public PoseTracker {
   int frames_since_start_ = 0;
   int reference_features_ = 0;
   Rigid3d ref_from_world_;
+  // Covariance of ref_from_world_ (the output covariance of the frame that became the
+  // reference; zero for the first frame, which defines the world).
+  Matrix6d ref_from_world_covariance_ = Matrix6d::Zero();
+  // This frame's measurement information H = J^T R^-1 J at the accepted update (set by
+  // IteratedUpdate): the measurements constrain every direction of the pose when it is positive
+  // definite.
+  Matrix6d frame_information_ = Matrix6d::Zero();
   PoseVelocityFilter filter_;
   RobustPoseSolver robust_solver_;
   Counters counters_;
