@@ -284,7 +284,7 @@ TEST(StereoLinesIo, SyntaxErrorsAndMissingFilesNameTheFile) {
   WriteTextFileAtomically(path, "[]");
   EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": top level: expected a JSON object, got array");
   std::remove(path.c_str());
-  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": cannot open file");
+  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": cannot open file (No such file or directory)");
 }
 
 TEST(StereoLinesIo, WriterRejectsWhatTheReaderWould) {
