@@ -12,6 +12,7 @@
 #include <iostream>
 #include <string>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "dataset/trajectory.h"
 #include "evaluation/metrics.h"
@@ -72,6 +73,10 @@ int main(int argc, char** argv) {
 
   try {
     options.alignment = slt::AlignmentFromName(alignment);
+    if (!out_path.empty()) {
+      slt::RefuseOutputThatIsInput("--out", out_path, {gt_path, est_path});
+      slt::CheckWritable("--out", out_path);
+    }
     const slt::Trajectory gt = ReadTrajectory(gt_path, gt_format, kitti_frame_period);
     const slt::Trajectory est = ReadTrajectory(est_path, est_format, kitti_frame_period);
     slt::TrajectoryErrors errors;
@@ -81,6 +86,12 @@ int main(int argc, char** argv) {
       throw std::invalid_argument(est_path + " against " + gt_path + ": " + e.what());
     }
     const nlohmann::json metrics = slt::ToJson(errors, per_frame);
+    // The readers bound every value, so this is a defect, not bad input: never print a NaN
+    // (dumped as null) as if it were a measurement.
+    const std::string non_finite = slt::FindNonFiniteNumber(metrics);
+    if (!non_finite.empty()) {
+      throw std::runtime_error(est_path + " against " + gt_path + ": metric '" + non_finite + "' is not finite");
+    }
     if (!out_path.empty()) slt::WriteJsonFile(out_path, metrics);
     std::cout << metrics.dump(2) << "\n";
     return 0;

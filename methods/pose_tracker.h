@@ -76,8 +76,11 @@ struct TrackedFrame {
   TrackerOutput output;
   double time_us = 0.0;
 };
-// Resets `tracker` with the sequence's rig, then tracks every frame in order, timing each
-// Track() call: the one loop that `track`, the experiment runner and the tests share.
+// One Track() call, timed.
+TrackedFrame TrackFrame(PoseTracker& tracker, const StereoFrame& frame);
+// Resets `tracker` with the sequence's rig, then tracks every frame in order (TrackFrame): the
+// loop that the experiment runner and the tests share (`track` streams its frames through
+// TrackFrame).
 std::vector<TrackedFrame> TrackSequence(PoseTracker& tracker, const StereoSequence& sequence);
 
 // Every registered tracker, in registration order.

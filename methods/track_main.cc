@@ -8,7 +8,10 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
@@ -52,30 +55,43 @@ int main(int argc, char** argv) {
     }
     if (input.empty()) throw CLI::RequiredError("--input");
     if (output.empty()) throw CLI::RequiredError("--output");
-    const StereoSequence sequence = ReadStereoLines(input);
-    const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
-
+    // Every output is checked before the (possibly long) tracking: none may be an input or
+    // another output, and each must be writable.
+    const std::vector<std::pair<std::string, std::string>> outputs = {
+        {"--output", output}, {"--kitti", kitti_path}, {"--log", log_path}};
+    std::vector<std::string> taken = {input, config_path};
+    for (const auto& [flag, path] : outputs) {
+      if (path.empty()) continue;
+      RefuseOutputThatIsInput(flag, path, taken);
+      CheckWritable(flag, path);
+      taken.push_back(path);
+    }
+    // Frame by frame: memory does not grow with the observations of a long sequence.
+    StereoLinesReader reader(input);
+    tracker->Reset(reader.rig());
     Trajectory trajectory;
-    trajectory.reserve(sequence.frames.size());
     std::ostringstream log;
     log << "frame,time,status,features_available,features_used,time_us\n";
     int counts[3] = {0, 0, 0};
     double total_us = 0.0;
-    for (size_t k = 0; k < run.size(); ++k) {
-      const TrackerOutput& out = run[k].output;
-      const double time = sequence.frames[k].time;
-      total_us += run[k].time_us;
+    StereoFrame frame;
+    for (size_t k = 0; reader.Next(&frame); ++k) {
+      const TrackedFrame tracked = TrackFrame(*tracker, frame);
+      const TrackerOutput& out = tracked.output;
+      total_us += tracked.time_us;
       ++counts[static_cast<int>(out.status)];
-      trajectory.push_back({time, out.cam_from_world.Inverse()});
-      log << k << "," << time << "," << TrackingStatusName(out.status) << "," << out.features_available << ","
-          << out.features_used << "," << run[k].time_us << "\n";
+      trajectory.push_back({frame.time, out.cam_from_world.Inverse()});
+      if (!log_path.empty()) {
+        log << k << "," << frame.time << "," << TrackingStatusName(out.status) << "," << out.features_available << ","
+            << out.features_used << "," << tracked.time_us << "\n";
+      }
     }
     WriteTumTrajectory(output, trajectory);
     if (!kitti_path.empty()) WriteKittiTrajectory(kitti_path, trajectory);
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
     std::fprintf(stderr, "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost), %.1f us per frame\n",
-                 method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2],
-                 sequence.frames.empty() ? 0.0 : total_us / sequence.frames.size());
+                 method.c_str(), trajectory.size(), counts[0], counts[1], counts[2],
+                 trajectory.empty() ? 0.0 : total_us / trajectory.size());
     return 0;
   } catch (const CLI::Error& e) {
     std::fprintf(stderr, "track: error: %s\n", e.what());
