@@ -86,15 +86,18 @@ void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
 
 void CheckWritable(const std::string& what, const std::string& path) {
   std::error_code error;
-  if (fs::is_directory(path, error)) throw std::runtime_error(what + " " + path + ": is a directory, expected a file");
-  const bool existed = fs::exists(path, error);
-  // O_NONBLOCK: opening a FIFO with no reader must not hang (it fails with ENXIO, which is
-  // accepted below: the FIFO is written once there is a reader).
-  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NONBLOCK, 0666);
-  if (fd < 0) {
-    if (errno == ENXIO) return;
-    throw std::runtime_error(what + " " + path + ": cannot write (" + ErrnoText() + ")");
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) throw std::runtime_error(what + " " + path + ": is a directory, expected a file");
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device or a FIFO: opening a FIFO and closing it again would end its reader's input.
+    if (::access(path.c_str(), W_OK) != 0) {
+      throw std::runtime_error(what + " " + path + ": cannot write (" + ErrnoText() + ")");
+    }
+    return;
   }
+  const bool existed = fs::exists(status);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT, 0666);
+  if (fd < 0) throw std::runtime_error(what + " " + path + ": cannot write (" + ErrnoText() + ")");
   ::close(fd);
   if (!existed) ::unlink(path.c_str());
 }

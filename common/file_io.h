@@ -27,8 +27,8 @@ void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
                              const std::vector<std::string>& inputs);
 
 // Checks that `path` can be written before any work is done: creates it when absent (removed
-// again at once), opens it for appending when it exists. Throws std::runtime_error
-// "<what> <path>: cannot write (<why>)".
+// again at once), opens a regular file for appending (nothing written), checks the permission
+// of a device or FIFO. Throws std::runtime_error "<what> <path>: cannot write (<why>)".
 void CheckWritable(const std::string& what, const std::string& path);
 
 // Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and

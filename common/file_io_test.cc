@@ -53,6 +53,9 @@ TEST(CheckWritable, RefusesUnwritablePathsAndLeavesNoFile) {
   EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir + "/no/such/dir.csv"); }),
             "--log " + dir + "/no/such/dir.csv: cannot write (No such file or directory)");
   EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir); }), "--log " + dir + ": is a directory, expected a file");
+  // A FIFO is not opened (with no reader that would block; with one it would end its input).
+  ASSERT_EQ(::mkfifo((dir + "/pipe").c_str(), 0600), 0);
+  EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir + "/pipe"); }), "");
 }
 
 // Renaming a temporary file over a FIFO (or /dev/null) would replace it with a regular file.

@@ -48,8 +48,10 @@ nlohmann::json ParseJson(std::istream& in, const std::string& where) {
   // The callback sees every value as it starts, before the tree under it is built: a deep
   // document is refused after kMaxJsonDepth levels, not parsed (and later copied or destroyed)
   // recursively to the end of the stack.
-  const auto limit_depth = [&where](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    if (depth > kMaxJsonDepth) {
+  using Event = nlohmann::json::parse_event_t;
+  const auto limit_depth = [&where](int depth, Event event, nlohmann::json&) {
+    // `depth` counts the enclosing levels: the top-level value starts at 0.
+    if ((event == Event::object_start || event == Event::array_start) && depth >= kMaxJsonDepth) {
       throw ConfigError(where + ": invalid JSON (nested deeper than " + std::to_string(kMaxJsonDepth) + " levels)");
     }
     return true;

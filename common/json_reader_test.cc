@@ -90,8 +90,11 @@ TEST(ParseJson, RefusesDeepNesting) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   EXPECT_EQ(ConfigErrorOf([&] { ParseJson(deep, "deep.json"); }),
             "deep.json: invalid JSON (nested deeper than 100 levels)");
-  const std::string ok = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
+  const std::string ok = std::string(kMaxJsonDepth, '[') + "1" + std::string(kMaxJsonDepth, ']');
   EXPECT_TRUE(ParseJson(ok, "ok.json").is_array());
+  const std::string one_more = "[" + ok + "]";
+  EXPECT_EQ(ConfigErrorOf([&] { ParseJson(one_more, "deep.json"); }),
+            "deep.json: invalid JSON (nested deeper than 100 levels)");
   const std::string path = TempDir("deep") + "/deep.json";
   std::ofstream(path) << "{\"a\": " << deep << "}";
   EXPECT_NE(ConfigErrorOf([&] { ReadJsonFile(path); }).find(path + ": invalid JSON (nested deeper"), std::string::npos);
