@@ -1,6 +1,7 @@
 #include "methods/stereo_ekf/stereo_ekf_tracker.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +22,14 @@ constexpr double kMinInlierFraction = 0.5;
 constexpr double kMaxNormalizedCost = 2.0;
 // The standard normal's 99.9 % quantile (of the Wilson-Hilferty bound in HealthyCost).
 constexpr double kStandardNormal999 = 3.09;
+// Below this ratio of the smallest to the largest eigenvalue of the measurement information the
+// used features do not constrain all six degrees of freedom of the pose (rounding level: an
+// exactly unobserved direction gives ~1e-16).
+constexpr double kMinRelativeInformation = 1e-9;
+// A frame whose update uses fewer than this fraction of the measurable features is reported
+// lost: when every segment is an outlier, a few of them still fit some pose by chance, and
+// that pose is no measurement of the camera (issue 21).
+constexpr double kMinUsedFraction = 0.25;
 // The median of chi-square(4), ChiSquareQuantile(0.5, 4) = 3.3567, rounded as when the
 // noise-scale adaptation was measured. Kept: the exact value changes almost every trial of every
 // experiment with adaptive noise (last digits of the errors), and every committed result with it.
@@ -300,6 +309,22 @@ int StereoEkfTracker::MeasuredRows() const {
   return rows;
 }
 
+bool StereoEkfTracker::MeasurementsConstrainPose() const {
+  // The information the used features carry about the 6-DoF pose increment, sum of Jw^T Jw
+  // (whitened: unit noise). Rank 6 <=> every direction of the pose is measured; a smallest
+  // eigenvalue below kMinRelativeInformation of the largest is a rank-deficient configuration
+  // up to rounding (the units differ, rad and m, but by far less than this ratio).
+  Matrix6d information = Matrix6d::Zero();
+  for (int i : inliers_) {
+    const auto& j = features_[i].whitened_jacobian;
+    information.noalias() += j.transpose() * j;
+  }
+  if (!information.allFinite()) return false;
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(information, Eigen::EigenvaluesOnly);
+  const Vector6d& values = eigen.eigenvalues();  // increasing
+  return values(5) > 0.0 && values(0) > kMinRelativeInformation * values(5);
+}
+
 double StereoEkfTracker::HealthyCost(int rows) {
   // Healthy when the posterior cost is plausible for its degrees of freedom: below
   // kMaxNormalizedCost per degree of freedom, and never below the 99.9 % chi-square quantile,
@@ -336,6 +361,18 @@ void StereoEkfTracker::Assess(FrameState* state) {
     healthy_ = state->cost <= HealthyCost(rows);
     AdaptNoiseScale(rows);
     out.status = TrackingStatus::kTracking;
+    if (!MeasurementsConstrainPose()) {
+      // The update moved the pose only along the directions the features see (one line, or
+      // points on one line, leave a rotation free): the rest is the prediction, so say lost.
+      // Only the status: the filter goes on as before.
+      ++counters_.lost_frames;
+      out.status = TrackingStatus::kLost;
+    } else if (state->used < kMinUsedFraction * state->valid) {
+      // Most measurable features disagree with the pose: a handful of segments that fit it by
+      // chance (every segment an outlier) is no evidence of where the camera is.
+      ++counters_.lost_frames;
+      out.status = TrackingStatus::kLost;
+    }
   }
   if (!filter_.cam_from_ref().rotation.allFinite() || !filter_.cam_from_ref().translation.allFinite() ||
       !filter_.velocity().allFinite() || !filter_.covariance().allFinite()) {

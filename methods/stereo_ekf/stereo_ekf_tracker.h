@@ -79,6 +79,8 @@ class StereoEkfTracker : public PoseTracker {
   void RobustStart(FrameState* state);
   void Update(FrameState* state);
   void Assess(FrameState* state);
+  // False when the used features leave a direction of the pose unmeasured (Assess: lost).
+  bool MeasurementsConstrainPose() const;
   void NewReferencePair(const StereoFrame& frame, FrameState* state);
 
   // Iterated update on `inliers_`, with the filter's pose as prior mean, starting at
