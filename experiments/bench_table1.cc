@@ -1,11 +1,18 @@
 // bench_table1: the paper's Table 1 (time per stereo frame at the minimum number of lines and
 // at 10, 20 and 30 lines) for every registered tracker, in one run so the ratios hold.
 //
-//   bench_table1 [--out DIR] [--benchmark_filter=REGEX] [--benchmark_out=FILE] [...]
+//   bench_table1 [--out DIR] [--extra 'METHOD JSON']... [--benchmark_filter=REGEX] [--benchmark_out=FILE] [...]
+//
+// --extra adds a row for a registered method with the given options after the default rows
+// (e.g. --extra 'taylor_line_sfm {"window_frames": 20}', labelled "taylor_line_sfm
+// (window_frames=20)"), measured in the same run.
 //
 // Each benchmark times one Track() call (prediction and update with every line of the frame)
 // per iteration on one simulated paper-protocol sequence (noise +-2.5 px, 100 frames) in which
-// exactly N lines are seen in both images of every frame. The tracker is reset and warmed up
+// exactly N lines are seen in both images of every frame; for methods that need primitive
+// configurations (TrackerInfo::needs_primitive_configurations) about 30 % of the N lines, and
+// at least 3, are cuboid edges (scene.paper.cuboid_fraction), the rest random lines, so that
+// their frames are measured rather than lost. The tracker is reset and warmed up
 // on the first kWarmupFrames frames before timing, and again whenever the sequence runs out;
 // that reset happens between PauseTiming() and ResumeTiming(), once every ~90 iterations, so
 // its cost and the pause overhead (two clock reads) are outside the measured time or amortised
@@ -59,12 +66,14 @@ const PaperRow kPaperRows[] = {
 // A sequence in which exactly `count` lines are seen in both images of every frame: the
 // paper's scene with more random lines than needed, restricted to the first `count` ids that
 // are observed in both images throughout (noise does not change which lines are observed).
-StereoSequence BenchSequence(int count) {
+// The first `cuboid_lines` ids of the scene are cuboid edges (they come first).
+StereoSequence BenchSequence(int count, int cuboid_lines) {
   SimulationConfig config;
   config.seed = 1;
   config.frames = kFrames;
   config.noise.endpoint_px = 2.5;
   config.scene.paper.lines = std::max(80, 3 * count);
+  config.scene.paper.cuboid_fraction = static_cast<double>(cuboid_lines) / config.scene.paper.lines;
   const SimulatedSequence sim = Simulate(config);
   std::map<std::int64_t, int> seen;
   for (const StereoFrame& f : sim.sequence.frames) {
@@ -85,8 +94,9 @@ StereoSequence BenchSequence(int count) {
   return FilterLines(sim.sequence, [&](std::int64_t id) { return keep.count(id) > 0; });
 }
 
-void BM_TrackFrame(benchmark::State& state, const std::string& method, std::shared_ptr<const StereoSequence> sequence) {
-  std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
+void BM_TrackFrame(benchmark::State& state, const std::string& method, const nlohmann::json& options,
+                   std::shared_ptr<const StereoSequence> sequence) {
+  std::unique_ptr<PoseTracker> tracker = CreateTracker(method, options, "--extra");
   auto warm_up = [&]() {
     tracker->Reset(sequence->rig);
     for (int k = 0; k < kWarmupFrames; ++k) tracker->Track(sequence->frames[k]);
@@ -190,8 +200,10 @@ const PaperRow* PaperRowFor(const std::string& method) {
 
 int main(int argc, char** argv) {
   using namespace slt;
-  // Our own flag (--out DIR or --out=DIR); everything else goes to Google Benchmark.
+  // Our own flags (--out DIR or --out=DIR, --extra 'METHOD JSON'); everything else goes to
+  // Google Benchmark.
   std::string out_dir;
+  std::vector<std::string> extras;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
@@ -199,6 +211,10 @@ int main(int argc, char** argv) {
       out_dir = argv[++i];
     } else if (a.rfind("--out=", 0) == 0) {
       out_dir = a.substr(6);
+    } else if (a == "--extra" && i + 1 < argc) {
+      extras.push_back(argv[++i]);
+    } else if (a.rfind("--extra=", 0) == 0) {
+      extras.push_back(a.substr(8));
     } else {
       args.push_back(argv[i]);
     }
@@ -223,18 +239,44 @@ int main(int argc, char** argv) {
   std::vector<Cell> cells;
   std::vector<std::string> methods;
   try {
-    std::map<int, std::shared_ptr<const StereoSequence>> sequences;
-    auto sequence_for = [&](int lines) {
-      if (!sequences.count(lines)) sequences[lines] = std::make_shared<const StereoSequence>(BenchSequence(lines));
-      return sequences[lines];
+    std::map<std::pair<int, int>, std::shared_ptr<const StereoSequence>> sequences;
+    auto sequence_for = [&](int lines, bool cuboids) {
+      const std::pair<int, int> key(lines, cuboids ? std::max(3, static_cast<int>(std::lround(0.3 * lines))) : 0);
+      if (!sequences.count(key)) sequences[key] = std::make_shared<const StereoSequence>(BenchSequence(key.first, key.second));
+      return sequences[key];
     };
+    // Rows: every registered tracker with its defaults, then the --extra ones.
+    std::vector<std::pair<std::string, nlohmann::json>> rows;
     for (const TrackerInfo& info : RegisteredTrackers()) {
-      if (info.plumbing_only) continue;
-      methods.push_back(info.name);
+      if (!info.plumbing_only) rows.emplace_back(info.name, nlohmann::json::object());
+    }
+    for (const std::string& extra : extras) {
+      const size_t space = extra.find(' ');
+      const std::string method = extra.substr(0, space);
+      nlohmann::json options = nlohmann::json::object();
+      if (space != std::string::npos) {
+        try {
+          options = nlohmann::json::parse(extra.substr(space + 1));
+        } catch (const nlohmann::json::exception& e) {
+          throw std::invalid_argument("--extra '" + extra + "': not JSON after the method name: " + e.what());
+        }
+      }
+      CreateTracker(method, options, "--extra '" + extra + "'");  // throws on a bad name or option
+      rows.emplace_back(method, options);
+    }
+    for (const auto& [method, options] : rows) {
+      // "taylor_line_sfm (window_frames=20)": no braces or quotes for the Markdown and LaTeX tables.
+      std::string label = method;
+      for (const auto& [key, value] : options.items()) {
+        label += (label == method ? " (" : ", ") + key + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+      }
+      if (label != method) label += ")";
+      methods.push_back(label);
       for (int column = 0; column < 4; ++column) {
-        Cell cell{info.name, column, column == 0 ? info.minimum_lines : kCounts[column - 1]};
+        Cell cell{label, column, column == 0 ? FindTracker(method).minimum_lines : kCounts[column - 1]};
         cells.push_back(cell);
-        benchmark::RegisterBenchmark(BenchmarkName(cell).c_str(), BM_TrackFrame, info.name, sequence_for(cell.lines))
+        benchmark::RegisterBenchmark(BenchmarkName(cell).c_str(), BM_TrackFrame, method, options,
+                                     sequence_for(cell.lines, FindTracker(method).needs_primitive_configurations))
             ->Unit(benchmark::kMicrosecond)
             ->UseRealTime();
       }
@@ -263,7 +305,8 @@ int main(int argc, char** argv) {
   }
   std::string md = "## Table 1: time per stereo frame (s)\n\nThis machine: " + machine +
                    "; one Track() call (prediction and update with every line), single thread, paper protocol "
-                   "(noise ±2.5 px), exactly N lines in both images of every frame.\n\n";
+                   "(noise ±2.5 px), exactly N lines in both images of every frame (about 30 % of them, at "
+                   "least 3, on cuboids for methods that need primitive configurations).\n\n";
   md += "| Method | Minimum number | 10 | 20 | 30 |\n|---|---:|---:|---:|---:|\n";
   for (const std::string& m : methods) {
     md += "| " + m + " |";
