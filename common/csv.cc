@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/file_io.h"
+
 namespace slt {
 
 std::string CsvField(const std::string& field) {
@@ -146,8 +148,7 @@ CsvTable ParseCsv(const std::string& text, const std::string& where) {
 }
 
 std::string ReadTextFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open file");
+  std::ifstream in = OpenInputFile(path);
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();

@@ -1,10 +1,10 @@
 #include "common/json_reader.h"
 
-#include <cstdio>
+#include <cmath>
 #include <fstream>
 #include <sstream>
-#include <system_error>
-#include <unistd.h>
+
+#include "common/file_io.h"
 
 namespace slt {
 
@@ -44,32 +44,55 @@ void ThrowOptionError(const std::string& where, const std::string& path, const s
   throw ConfigError(where + ": key '" + (path.empty() ? key : path + "." + key) + "': " + reason);
 }
 
-nlohmann::json ReadJsonFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open file");
+nlohmann::json ParseJson(std::istream& in, const std::string& where) {
+  // The callback sees every value as it starts, before the tree under it is built: a deep
+  // document is refused after kMaxJsonDepth levels, not parsed (and later copied or destroyed)
+  // recursively to the end of the stack.
+  using Event = nlohmann::json::parse_event_t;
+  const auto limit_depth = [&where](int depth, Event event, nlohmann::json&) {
+    // `depth` counts the enclosing levels: the top-level value starts at 0.
+    if ((event == Event::object_start || event == Event::array_start) && depth >= kMaxJsonDepth) {
+      throw ConfigError(where + ": invalid JSON (nested deeper than " + std::to_string(kMaxJsonDepth) + " levels)");
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ConfigError(path + ": invalid JSON (" + e.what() + ")");
+    return nlohmann::json::parse(in, limit_depth);
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range for a number that overflows a double (1e309).
+    throw ConfigError(where + ": invalid JSON (" + e.what() + ")");
   }
 }
 
-void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot write file");
-    out << contents;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(path + ": write failed");
+nlohmann::json ParseJson(const std::string& text, const std::string& where) {
+  std::istringstream in(text);
+  return ParseJson(in, where);
+}
+
+nlohmann::json ReadJsonFile(const std::string& path) {
+  std::ifstream in;
+  try {
+    in = OpenInputFile(path);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(e.what());
+  }
+  return ParseJson(in, path);
+}
+
+std::string FindNonFiniteNumber(const nlohmann::json& value, const std::string& path) {
+  if (value.is_number_float()) return std::isfinite(value.get<double>()) ? "" : (path.empty() ? "(top level)" : path);
+  if (value.is_array()) {
+    for (size_t i = 0; i < value.size(); ++i) {
+      std::string found = FindNonFiniteNumber(value[i], path + "[" + std::to_string(i) + "]");
+      if (!found.empty()) return found;
+    }
+  } else if (value.is_object()) {
+    for (const auto& item : value.items()) {
+      std::string found = FindNonFiniteNumber(item.value(), path.empty() ? item.key() : path + "." + item.key());
+      if (!found.empty()) return found;
     }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot move the written file into place");
-  }
+  return "";
 }
 
 void WriteJsonFile(const std::string& path, const nlohmann::json& value, int indent) {

@@ -9,11 +9,14 @@
 
 #include <nlohmann/json.hpp>
 #include <cstdint>
+#include <istream>
 #include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+
+#include "common/file_io.h"
 
 namespace slt {
 
@@ -87,10 +90,23 @@ class JsonReader {
 [[noreturn]] void ThrowOptionError(const std::string& where, const std::string& path,
                                    const std::string& key, const std::string& reason);
 
-// Parses a JSON file; throws ConfigError naming the file on I/O or syntax errors.
+// Deeper nesting is refused while parsing: no file of the project nests more than a handful of
+// levels, and nlohmann's recursive copy and destruction would overflow the stack long before
+// the parser stops (100 000 levels crash).
+constexpr int kMaxJsonDepth = 100;
+
+// Parses JSON; throws ConfigError "<where>: invalid JSON (...)" on a syntax error, a number
+// that overflows a double (1e309) or nesting deeper than kMaxJsonDepth. Every JSON reader of the
+// project parses through these.
+nlohmann::json ParseJson(std::istream& in, const std::string& where);
+nlohmann::json ParseJson(const std::string& text, const std::string& where);
+// Parses a JSON file; throws ConfigError naming the file on I/O or syntax errors (a directory
+// is an I/O error).
 nlohmann::json ReadJsonFile(const std::string& path);
-// Writes atomically (temporary file + rename): readers never see a half-written file.
+// The dotted key path ("a.b[2]") of the first number in `value` that is not finite (nlohmann
+// holds NaN and infinity and dumps them as null); "" when every number is finite.
+std::string FindNonFiniteNumber(const nlohmann::json& value, const std::string& path = "");
+// Writes atomically (temporary file + rename; WriteTextFileAtomically, common/file_io.h).
 void WriteJsonFile(const std::string& path, const nlohmann::json& value, int indent = 2);
-void WriteTextFileAtomically(const std::string& path, const std::string& contents);
 
 }  // namespace slt

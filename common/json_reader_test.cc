@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
 #include "common/json_changes.h"
 
 namespace slt {
@@ -66,6 +70,54 @@ TEST(JsonReader, TypesAreStrict) {
   nlohmann::json built = {{"ok", 7}};
   JsonReader(built, "code").Get("ok", &ok);
   EXPECT_EQ(ok, 7u);
+}
+
+}  // namespace
+}  // namespace slt
+
+namespace slt {
+namespace {
+
+std::string TempDir(const std::string& name) {
+  const std::string dir = std::string(::testing::TempDir()) + "slt_json_reader_" + name;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// 100 000 levels crashed the parser's callers (stack overflow); the limit is checked while
+// parsing, so the message names the file.
+TEST(ParseJson, RefusesDeepNesting) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  EXPECT_EQ(ConfigErrorOf([&] { ParseJson(deep, "deep.json"); }),
+            "deep.json: invalid JSON (nested deeper than 100 levels)");
+  const std::string ok = std::string(kMaxJsonDepth, '[') + "1" + std::string(kMaxJsonDepth, ']');
+  EXPECT_TRUE(ParseJson(ok, "ok.json").is_array());
+  const std::string one_more = "[" + ok + "]";
+  EXPECT_EQ(ConfigErrorOf([&] { ParseJson(one_more, "deep.json"); }),
+            "deep.json: invalid JSON (nested deeper than 100 levels)");
+  const std::string path = TempDir("deep") + "/deep.json";
+  std::ofstream(path) << "{\"a\": " << deep << "}";
+  EXPECT_NE(ConfigErrorOf([&] { ReadJsonFile(path); }).find(path + ": invalid JSON (nested deeper"), std::string::npos);
+}
+
+// nlohmann reports 1e309 as out_of_range, not parse_error: it escaped without the file name.
+TEST(ParseJson, NumberOverflowNamesTheFile) {
+  const std::string message = ConfigErrorOf([] { ParseJson(R"({"x": 1e309})", "big.json"); });
+  EXPECT_EQ(message.rfind("big.json: invalid JSON (", 0), 0u) << message;
+  EXPECT_NE(message.find("1e309"), std::string::npos) << message;
+}
+
+TEST(FindNonFiniteNumber, NamesTheKey) {
+  nlohmann::json j = {{"a", 1.0}, {"b", {{"c", {1.0, std::nan("")}}}}};
+  EXPECT_EQ(FindNonFiniteNumber(j), "b.c[1]");
+  j["b"]["c"][1] = 2.0;
+  EXPECT_EQ(FindNonFiniteNumber(j), "");
+  EXPECT_EQ(FindNonFiniteNumber(nlohmann::json(HUGE_VAL)), "(top level)");
+}
+
+TEST(ReadJsonFile, DirectoryNamesTheFile) {
+  const std::string dir = TempDir("dir");
+  EXPECT_EQ(ConfigErrorOf([&] { ReadJsonFile(dir); }), dir + ": is a directory, expected a file");
 }
 
 }  // namespace

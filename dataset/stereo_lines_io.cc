@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstring>
+#include <fstream>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 
 namespace slt {
@@ -174,6 +177,36 @@ void CheckImage(const std::vector<LineObservation>& observations, const std::str
   }
 }
 
+// Frame k of a sequence: finite non-decreasing time (after *previous_time when given), valid
+// images.
+void CheckFrame(const StereoFrame& frame, size_t k, const double* previous_time, const std::string& where) {
+  const std::string frame_path = Indexed("frames", k);
+  if (!std::isfinite(frame.time)) Fail(where, frame_path + ".time", "must be finite");
+  if (previous_time != nullptr && frame.time < *previous_time) {
+    Fail(where, frame_path + ".time",
+         nlohmann::json(frame.time).dump() + " is before the previous frame's time " +
+             nlohmann::json(*previous_time).dump());
+  }
+  CheckImage(frame.left, where, frame_path + ".left");
+  CheckImage(frame.right, where, frame_path + ".right");
+}
+
+StereoFrame FrameFromJson(const nlohmann::json& object, const std::string& where, size_t k) {
+  const std::string path = Indexed("frames", k);
+  ExpectFields(object, where, path, {"time", "left", "right"});
+  StereoFrame frame;
+  frame.time = Number(object["time"], where, path + ".time");
+  frame.left = ImageFromJson(object["left"], where, path + ".left");
+  frame.right = ImageFromJson(object["right"], where, path + ".right");
+  return frame;
+}
+
+void CheckFormat(const nlohmann::json& format, const std::string& where) {
+  if (format != kFormatName) {
+    Fail(where, "format", std::string("expected \"") + kFormatName + "\", got " + Describe(format));
+  }
+}
+
 // The shortest text that reads back to the same value (to_chars without a precision); valid
 // JSON for finite numbers.
 template <typename T>
@@ -246,37 +279,219 @@ nlohmann::json StereoRigToJson(const StereoRig& rig) {
 void CheckStereoSequence(const StereoSequence& sequence, const std::string& where) {
   CheckRig(sequence.rig, where, "rig");
   for (size_t k = 0; k < sequence.frames.size(); ++k) {
-    CheckFrame(sequence.frames[k], k, k > 0 ? sequence.frames[k - 1].time : 0.0, where);
+    CheckFrame(sequence.frames[k], k, k > 0 ? &sequence.frames[k - 1].time : nullptr, where);
   }
 }
 
 StereoSequence StereoLinesFromJson(const nlohmann::json& document, const std::string& where) {
   ExpectFields(document, where, "", {"format", "rig", "frames"});
-  const nlohmann::json& format = document["format"];
-  if (format != kFormatName) {
-    Fail(where, "format", std::string("expected \"") + kFormatName + "\", got " + Describe(format));
-  }
+  CheckFormat(document["format"], where);
   StereoSequence sequence;
   sequence.rig = StereoRigFromJson(document["rig"], where, "rig");
   const nlohmann::json& frames = document["frames"];
   if (!frames.is_array()) Fail(where, "frames", "expected an array of frames, got " + Describe(frames));
 
   sequence.frames.reserve(frames.size());
-  for (size_t k = 0; k < frames.size(); ++k) {
-    const nlohmann::json& object = frames[k];
-    const std::string path = Indexed("frames", k);
-    ExpectFields(object, where, path, {"time", "left", "right"});
-    StereoFrame frame;
-    frame.time = Number(object["time"], where, path + ".time");
-    frame.left = ImageFromJson(object["left"], where, path + ".left");
-    frame.right = ImageFromJson(object["right"], where, path + ".right");
-    sequence.frames.push_back(std::move(frame));
-  }
+  for (size_t k = 0; k < frames.size(); ++k) sequence.frames.push_back(FrameFromJson(frames[k], where, k));
   CheckStereoSequence(sequence, where);
   return sequence;
 }
 
 StereoSequence ReadStereoLines(const std::string& path) { return StereoLinesFromJson(ReadJsonFile(path), path); }
+
+// Splits the file into the values of its top-level keys and the elements of "frames", each
+// parsed on its own (ParseJson: the same syntax errors and depth limit as the whole file).
+class StereoLinesReader::Scanner {
+ public:
+  Scanner(std::ifstream in, std::string where) : in_(std::move(in)), buffer_(in_.rdbuf()), where_(std::move(where)) {}
+
+  int Peek() { return buffer_->sgetc(); }
+  int Get() {
+    const int c = buffer_->sbumpc();
+    if (c != kEnd) ++offset_;
+    return c;
+  }
+  void SkipSpace() {
+    for (int c = Peek(); c == ' ' || c == '\t' || c == '\n' || c == '\r'; c = Peek()) Get();
+  }
+  [[noreturn]] void Syntax(const std::string& what) const {
+    throw ConfigError(where_ + ": invalid JSON (" + what + " at byte " + std::to_string(offset_) + ")");
+  }
+  // The next non-space character, consumed.
+  int Next() {
+    SkipSpace();
+    return Get();
+  }
+
+  // Replaces *text with the text of the next value: a string, a scalar, or an object or array up
+  // to its matching bracket (brackets inside strings skipped; mismatched kinds are left for the
+  // parser to report).
+  void ReadValue(std::string* text) {
+    text->clear();
+    SkipSpace();
+    const int first = Peek();
+    if (first == '"') {
+      ReadString(text);
+    } else if (first == '{' || first == '[') {
+      std::size_t depth = 0;
+      do {
+        const int c = Get();
+        if (c == kEnd) Syntax("unexpected end of input");
+        if (c == '"') {
+          text->push_back('"');
+          ReadStringRest(text);
+          continue;
+        }
+        text->push_back(static_cast<char>(c));
+        if (c == '{' || c == '[') ++depth;
+        if (c == '}' || c == ']') --depth;
+      } while (depth > 0);
+    } else {
+      for (int c = Peek(); c != kEnd && std::strchr(",]} \t\r\n", c) == nullptr; c = Peek()) {
+        text->push_back(static_cast<char>(Get()));
+      }
+      if (text->empty()) Syntax("expected a value");
+    }
+  }
+  // A key and its ':'.
+  std::string ReadKey() {
+    SkipSpace();
+    if (Peek() != '"') Syntax("expected a key");
+    std::string text;
+    ReadString(&text);
+    if (Next() != ':') Syntax("expected ':'");
+    return ParseJson(text, where_).get<std::string>();
+  }
+
+ private:
+  static constexpr int kEnd = std::char_traits<char>::eof();
+
+  void ReadString(std::string* text) {
+    text->push_back(static_cast<char>(Get()));  // the opening quote
+    ReadStringRest(text);
+  }
+  void ReadStringRest(std::string* text) {
+    for (;;) {
+      int c = Get();
+      if (c == kEnd) Syntax("unterminated string");
+      text->push_back(static_cast<char>(c));
+      if (c == '"') return;
+      if (c == '\\') {
+        c = Get();
+        if (c == kEnd) Syntax("unterminated string");
+        text->push_back(static_cast<char>(c));
+      }
+    }
+  }
+
+  std::ifstream in_;
+  std::streambuf* buffer_;
+  std::string where_;
+  std::size_t offset_ = 0;
+};
+
+StereoLinesReader::StereoLinesReader(const std::string& path) : path_(path) {
+  std::ifstream in;
+  try {
+    in = OpenInputFile(path);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(e.what());
+  }
+  scanner_ = std::make_unique<Scanner>(std::move(in), path);
+  Scanner& s = *scanner_;
+  const auto read_whole = [&] {
+    scanner_.reset();
+    whole_ = ReadStereoLines(path);
+    rig_ = whole_->rig;
+  };
+  s.SkipSpace();
+  if (s.Peek() != '{') {  // not an object: ReadStereoLines says what it is
+    read_whole();
+    return;
+  }
+  s.Get();
+  s.SkipSpace();
+  if (s.Peek() == '}') {  // {}: every key missing
+    read_whole();
+    return;
+  }
+  bool have_format = false, have_rig = false;
+  std::string text;
+  for (;;) {
+    const std::string key = s.ReadKey();
+    if (key == "frames") {
+      if (!have_format || !have_rig) {
+        read_whole();
+        return;
+      }
+      s.SkipSpace();
+      if (s.Peek() != '[') {
+        s.ReadValue(&text);
+        Fail(path, "frames", "expected an array of frames, got " + Describe(ParseJson(text, path)));
+      }
+      s.Get();
+      in_frames_ = true;
+      return;
+    }
+    if (key != "format" && key != "rig") Fail(path, key, "unknown key");
+    bool& have = key == "format" ? have_format : have_rig;
+    if (have) Fail(path, key, "given twice");
+    have = true;
+    s.ReadValue(&text);
+    const nlohmann::json value = ParseJson(text, path);
+    if (key == "format") {
+      CheckFormat(value, path);
+    } else {
+      rig_ = StereoRigFromJson(value, path, "rig");
+    }
+    const int c = s.Next();
+    if (c == '}') Fail(path, !have_format ? "format" : !have_rig ? "rig" : "frames", "missing");
+    if (c != ',') s.Syntax("expected ',' or '}'");
+  }
+}
+
+StereoLinesReader::~StereoLinesReader() = default;
+
+bool StereoLinesReader::Next(StereoFrame* frame) {
+  if (whole_) {
+    if (next_frame_ >= whole_->frames.size()) return false;
+    *frame = whole_->frames[next_frame_++];
+    return true;
+  }
+  if (!in_frames_) return false;
+  Scanner& s = *scanner_;
+  s.SkipSpace();
+  if (next_frame_ == 0 && s.Peek() == ']') {
+    s.Get();
+    FinishObject();
+    return false;
+  }
+  std::string text;
+  s.ReadValue(&text);
+  *frame = FrameFromJson(ParseJson(text, path_), path_, next_frame_);
+  CheckFrame(*frame, next_frame_, next_frame_ > 0 ? &previous_time_ : nullptr, path_);
+  previous_time_ = frame->time;
+  ++next_frame_;
+  const int c = s.Next();
+  if (c == ',') return true;
+  if (c != ']') s.Syntax("expected ',' or ']'");
+  FinishObject();
+  return true;
+}
+
+void StereoLinesReader::FinishObject() {
+  // Every key was given before the frames: only the closing brace may follow.
+  in_frames_ = false;
+  Scanner& s = *scanner_;
+  const int c = s.Next();
+  if (c == ',') {
+    const std::string key = s.ReadKey();
+    Fail(path_, key, key == "format" || key == "rig" || key == "frames" ? "given twice" : "unknown key");
+  }
+  if (c != '}') s.Syntax("expected ',' or '}'");
+  s.SkipSpace();
+  if (s.Peek() != std::char_traits<char>::eof()) s.Syntax("unexpected text after the top-level object");
+}
 
 nlohmann::json StereoLinesToJson(const StereoSequence& sequence) {
   const auto image = [](const std::vector<LineObservation>& observations) {

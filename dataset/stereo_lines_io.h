@@ -13,7 +13,9 @@
 #pragma once
 
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "dataset/stereo_sequence.h"
@@ -51,6 +53,37 @@ class StereoLinesWriter {
 // Checks the sequence first (CheckStereoSequence), so it never writes a file that
 // ReadStereoLines would reject; writes atomically, one observation per line.
 void WriteStereoLines(const std::string& path, const StereoSequence& sequence);
+
+// Reads a stereo-lines/1 file frame by frame: it holds one frame's text and observations at a
+// time, so memory does not grow with the length of the sequence (`track` uses it). Same checks
+// and same error messages as ReadStereoLines, frame by frame (a bad frame k throws when it is
+// read, after frames 0..k-1 were returned). Streaming needs "format" and "rig" before "frames",
+// as every writer of the project puts them; a file with another key order (or that is not a
+// JSON object) is read whole with ReadStereoLines instead. A top-level key given twice is an
+// error (ReadStereoLines keeps the last).
+class StereoLinesReader {
+ public:
+  explicit StereoLinesReader(const std::string& path);
+  ~StereoLinesReader();
+  StereoLinesReader(const StereoLinesReader&) = delete;
+  StereoLinesReader& operator=(const StereoLinesReader&) = delete;
+
+  const StereoRig& rig() const { return rig_; }
+  // Reads the next frame into *frame; false after the last one (the rest of the file is then
+  // checked). Throws ConfigError naming the file and key ("frames[3].left[7]").
+  bool Next(StereoFrame* frame);
+
+ private:
+  class Scanner;
+  void FinishObject();  // after the frames: the closing brace and nothing else
+  std::string path_;
+  StereoRig rig_;
+  std::unique_ptr<Scanner> scanner_;    // streaming
+  std::optional<StereoSequence> whole_;  // the fallback: the file read whole
+  size_t next_frame_ = 0;
+  double previous_time_ = 0.0;
+  bool in_frames_ = false;
+};
 
 // The rules a sequence must satisfy beyond the JSON structure: a usable rig
 // (StereoRig::Check), finite times and coordinates, non-decreasing times, segments of non-zero

@@ -10,8 +10,9 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "common/json_reader.h"
+#include "common/file_io.h"
 #include "common/json_changes.h"
+#include "common/json_reader.h"
 
 namespace slt {
 namespace {
@@ -42,6 +43,32 @@ StereoSequence RandomSequence(int frames, int lines_per_image, unsigned seed) {
     sequence.frames.push_back(frame);
   }
   return sequence;
+}
+
+// Reads with the streaming reader, frame by frame.
+StereoSequence ReadStreamed(const std::string& path) {
+  StereoLinesReader reader(path);
+  StereoSequence sequence;
+  sequence.rig = reader.rig();
+  StereoFrame frame;
+  while (reader.Next(&frame)) sequence.frames.push_back(frame);
+  EXPECT_FALSE(reader.Next(&frame));
+  return sequence;
+}
+
+// The document's keys in the order the project's writers use (format, rig, frames): the order
+// the streaming reader needs (nlohmann dumps keys sorted, frames before rig).
+std::string InWriterOrder(const nlohmann::json& document) {
+  std::string text = "{";
+  for (const auto& item : document.items()) {
+    if (item.key() == "format" || item.key() == "rig" || item.key() == "frames") continue;
+    text += nlohmann::json(item.key()).dump() + ": " + item.value().dump() + ", ";
+  }
+  for (const char* key : {"format", "rig", "frames"}) {
+    if (document.contains(key)) text += std::string("\"") + key + "\": " + document[key].dump() + ", ";
+  }
+  if (text.size() > 1) text.resize(text.size() - 2);
+  return text + "}";
 }
 
 void ExpectSameObservations(const std::vector<LineObservation>& a, const std::vector<LineObservation>& b) {
@@ -210,11 +237,17 @@ class MalformedStereoLines : public ::testing::Test {
     StereoSequence sequence = RandomSequence(4, 10, 3);
     document_ = StereoLinesToJson(sequence);
   }
-  // Writes the document to a file, reads it and returns the error.
+  // Writes the document to a file, reads it and returns the error; the streaming reader must
+  // give the same.
   std::string ReadError() {
     const std::string path = TempPath("malformed.json");
-    WriteJsonFile(path, document_);
+    if (document_.is_object()) {
+      WriteTextFileAtomically(path, InWriterOrder(document_));
+    } else {
+      WriteJsonFile(path, document_);
+    }
     const std::string error = ConfigErrorOf([&] { ReadStereoLines(path); });
+    EXPECT_EQ(ConfigErrorOf([&] { ReadStreamed(path); }), error);
     std::remove(path.c_str());
     if (error.empty()) return error;
     EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << "error does not start with the file: " << error;
@@ -310,6 +343,58 @@ TEST_F(MalformedStereoLines, BadFrames) {
   EXPECT_EQ(ReadError(), "key 'frames': expected an array of frames, got {}");
 }
 
+TEST_F(MalformedStereoLines, TopLevelKeys) {
+  document_["extra"] = 1;
+  EXPECT_EQ(ReadError(), "key 'extra': unknown key");
+  document_ = nlohmann::json::array();
+  EXPECT_EQ(ReadError(), "top level: expected a JSON object, got array");
+}
+
+// The streaming reader gives what ReadStereoLines gives, in any key order, and reads the frames
+// after an error-free prefix.
+TEST(StereoLinesReader, SameSequenceAsTheWholeFileReader) {
+  const StereoSequence written = RandomSequence(20, 30, 4);
+  const std::string path = TempPath("streamed.json");
+  WriteStereoLines(path, written);  // format, rig, frames: streamed
+  const StereoSequence streamed = ReadStreamed(path);
+  const StereoSequence sorted_keys = [&] {
+    WriteJsonFile(path, StereoLinesToJson(written));  // frames before rig: read whole
+    return ReadStreamed(path);
+  }();
+  for (const StereoSequence* read : {&streamed, &sorted_keys}) {
+    EXPECT_EQ(read->rig.right.fx, written.rig.right.fx);
+    EXPECT_EQ(read->rig.right_from_left.rotation, written.rig.right_from_left.rotation);
+    ASSERT_EQ(read->frames.size(), written.frames.size());
+    for (size_t k = 0; k < read->frames.size(); ++k) {
+      EXPECT_EQ(read->frames[k].time, written.frames[k].time);
+      ExpectSameObservations(read->frames[k].left, written.frames[k].left);
+      ExpectSameObservations(read->frames[k].right, written.frames[k].right);
+    }
+  }
+  WriteStereoLines(path, StereoSequence());
+  EXPECT_TRUE(ReadStreamed(path).frames.empty());
+  std::remove(path.c_str());
+}
+
+TEST(StereoLinesReader, SyntaxErrorsNameTheFileAndTheByte) {
+  const std::string path = TempPath("streamed_syntax.json");
+  const std::string head = InWriterOrder(StereoLinesToJson(RandomSequence(1, 3, 5)));
+  const std::string prefix = head.substr(0, head.rfind("\"frames\""));
+  for (const auto& [frames, message] : std::vector<std::pair<std::string, std::string>>{
+           {"\"frames\": [{\"time\": 0, \"left\": [], \"right\": []},]}", "expected a value at byte"},
+           {"\"frames\": [{\"time\": 0, \"left\": [], \"right\": []}} ", "expected ',' or ']' at byte"},
+           {"\"frames\": []} x", "unexpected text after the top-level object at byte"},
+           {"\"frames\": [], \"rig\": {}}", "key 'rig': given twice"},
+           {"\"frames\": [{\"time\": 0, \"left\": \"[}", "unterminated string at byte"},
+           {"\"frames\": [" + std::string(1000, '[') + std::string(1000, ']') + "]}", "nested deeper than 100 levels"}}) {
+    WriteTextFileAtomically(path, prefix + frames);
+    const std::string error = ConfigErrorOf([&] { ReadStreamed(path); });
+    EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << error;
+    EXPECT_NE(error.find(message), std::string::npos) << frames << " -> " << error;
+  }
+  std::remove(path.c_str());
+}
+
 TEST(StereoLinesIo, SyntaxErrorsAndMissingFilesNameTheFile) {
   const std::string path = TempPath("syntax.json");
   WriteTextFileAtomically(path, "{\"format\": \"stereo-lines/1\",");
@@ -317,7 +402,7 @@ TEST(StereoLinesIo, SyntaxErrorsAndMissingFilesNameTheFile) {
   WriteTextFileAtomically(path, "[]");
   EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": top level: expected a JSON object, got array");
   std::remove(path.c_str());
-  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": cannot open file");
+  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": cannot open file (No such file or directory)");
 }
 
 TEST(StereoLinesIo, WriterRejectsWhatTheReaderWould) {

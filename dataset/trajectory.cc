@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 
 namespace slt {
@@ -20,9 +21,7 @@ constexpr double kUnitTolerance = 1e-3;
 // "<file>:<line>: <reason>".
 class LineParser {
  public:
-  explicit LineParser(const std::string& path) : path_(path), in_(path) {
-    if (!in_) throw std::runtime_error(path + ": cannot open file");
-  }
+  explicit LineParser(const std::string& path) : path_(path), in_(OpenInputFile(path)) {}
 
   // Reads the numbers of the next data line into `values`; false at the end of the file.
   bool Next(std::vector<double>* values) {
@@ -100,6 +99,18 @@ void CheckFinite(const std::string& path, size_t index, const TimedPose& pose) {
       !pose.world_from_cam.translation.allFinite()) {
     FailPose(path, index, pose, "not finite");
   }
+  if (pose.world_from_cam.translation.cwiseAbs().maxCoeff() > kMaxTrajectoryCoordinate) {
+    FailPose(path, index, pose, "translation beyond " + Describe(kMaxTrajectoryCoordinate) + " m");
+  }
+}
+
+// What the readers accept of a translation (see kMaxTrajectoryCoordinate).
+void CheckTranslation(const LineParser& parser, const double* t) {
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(t[i]) > kMaxTrajectoryCoordinate) {
+      parser.Fail("translation " + Describe(t[i]) + " beyond " + Describe(kMaxTrajectoryCoordinate) + " m");
+    }
+  }
 }
 
 }  // namespace
@@ -116,6 +127,7 @@ Trajectory ReadTumTrajectory(const std::string& path) {
       parser.Fail("time " + Describe(v[0]) + " is before the previous pose's time " +
                   Describe(trajectory.back().time));
     }
+    CheckTranslation(parser, &v[1]);
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);  // Eigen's constructor takes w first
     if (std::abs(q.norm() - 1.0) > kUnitTolerance) {
       parser.Fail("quaternion (qx qy qz qw) has norm " + Describe(q.norm()) + ", expected 1");
@@ -157,6 +169,8 @@ Trajectory ReadKittiTrajectory(const std::string& path, double frame_period) {
       parser.Fail("expected 12 numbers (row-major 3x4 world_from_cam), got " + std::to_string(v.size()));
     }
     const Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> m(v.data());
+    const double translation[3] = {v[3], v[7], v[11]};
+    CheckTranslation(parser, translation);
     const Eigen::Matrix3d r = m.leftCols<3>();
     const double orthogonality_error = (r.transpose() * r - Eigen::Matrix3d::Identity()).norm();
     if (orthogonality_error > kUnitTolerance || r.determinant() < 0.0) {

@@ -7,7 +7,8 @@
 // See docs/formats.md.
 //
 // Readers skip blank lines and lines starting with '#', accept any whitespace between numbers,
-// and require finite numbers and non-decreasing times. TUM quaternions are normalised (a norm
+// and require finite numbers, translations within kMaxTrajectoryCoordinate and non-decreasing
+// times. TUM quaternions are normalised (a norm
 // further than 1e-3 from 1 is an error: the file is not what it claims to be); KITTI rotation
 // blocks are projected onto the nearest rotation (an orthogonality error above 1e-3 or a
 // reflection is an error). Writers print every number in the shortest form that reads back
@@ -22,6 +23,11 @@
 
 namespace slt {
 
+// Largest |x|, |y| or |z| of a translation the readers and writers accept, in metres (ten times
+// Saturn's distance from the Sun): no camera trajectory goes further, and beyond ~1e154 m the
+// squared errors of the metrics overflow to infinity.
+constexpr double kMaxTrajectoryCoordinate = 1e13;
+
 struct TimedPose {
   double time = 0.0;  // seconds
   Rigid3d world_from_cam;
@@ -32,12 +38,14 @@ using Trajectory = std::vector<TimedPose>;
 // Throw std::runtime_error "<file>:<line>: <what is wrong>" on malformed input.
 Trajectory ReadTumTrajectory(const std::string& path);
 // Writes atomically with a '#' header line. Throws std::invalid_argument naming the pose when a
-// value is not finite or times decrease (the reader would reject the file).
+// value is not finite, a translation is beyond kMaxTrajectoryCoordinate or times decrease (the
+// reader would reject the file).
 void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory);
 // KITTI has no times: frame k gets time k * frame_period (seconds; std::invalid_argument unless
 // finite and > 0).
 Trajectory ReadKittiTrajectory(const std::string& path, double frame_period = 0.1);
-// Times are dropped. Throws std::invalid_argument naming the pose when a value is not finite.
+// Times are dropped. Throws std::invalid_argument naming the pose when a value is not finite or
+// a translation is beyond kMaxTrajectoryCoordinate.
 void WriteKittiTrajectory(const std::string& path, const Trajectory& trajectory);
 
 }  // namespace slt

@@ -8,6 +8,7 @@
 #include <random>
 #include <unistd.h>
 
+#include "common/json_changes.h"
 #include "common/json_reader.h"
 #include "geometry/se3.h"
 
@@ -20,16 +21,6 @@ const std::string kTestData = std::string(SLT_SOURCE_DIR) + "/dataset/testdata/"
 // other build trees may run the same tests at the same time.
 std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "trajectory_test_" + std::to_string(::getpid()) + "_" + name;
-}
-
-// The message of the exception that f throws, or "" when it throws none.
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
 }
 
 std::string ReadErrorOf(const std::string& contents, bool kitti = false) {
@@ -156,6 +147,8 @@ TEST(Trajectory, MalformedTumNamesFileAndLine) {
   EXPECT_EQ(ReadErrorOf("0 0 0 0 0 0 0 1\n0.1 0 0,5 0 0 0 0 1\n"), ":2: '0,5' is not a number");
   EXPECT_EQ(ReadErrorOf("0 0 nan 0 0 0 0 1\n"), ":1: non-finite value 'nan'");
   EXPECT_EQ(ReadErrorOf("0 0 0 0 0 0 0 inf\n"), ":1: non-finite value 'inf'");
+  // Squares of 1e308 overflow: evaluate printed null statistics.
+  EXPECT_EQ(ReadErrorOf("0 1e308 0 0 0 0 0 1\n"), ":1: translation 1e+308 beyond 1e+13 m");
   EXPECT_EQ(ReadErrorOf("0 0 0 0 0 0 0 0.5\n"), ":1: quaternion (qx qy qz qw) has norm 0.5, expected 1");
   EXPECT_EQ(ReadErrorOf("0.2 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 1\n"),
             ":2: time 0.1 is before the previous pose's time 0.2");
@@ -169,10 +162,15 @@ TEST(Trajectory, MalformedKittiNamesFileAndLine) {
   EXPECT_EQ(ReadErrorOf("2 0 0 0 0 1 0 0 0 0 1 0\n", true),
             ":1: the left 3x3 block is not a rotation matrix (||R^T R - I|| = 3, det = 2)");
   EXPECT_EQ(ReadErrorOf("1 0 0 0 0 1 0 0 0 0 1 x\n", true), ":1: 'x' is not a number");
+  EXPECT_EQ(ReadErrorOf("1 0 0 0 0 1 0 -2e13 0 0 1 0\n", true), ":1: translation -2e+13 beyond 1e+13 m");
 }
 
 TEST(Trajectory, MissingFileAndBadPeriod) {
-  EXPECT_EQ(ErrorOf([] { ReadTumTrajectory("/nonexistent/a.tum"); }), "/nonexistent/a.tum: cannot open file");
+  EXPECT_EQ(ErrorOf([] { ReadTumTrajectory("/nonexistent/a.tum"); }),
+            "/nonexistent/a.tum: cannot open file (No such file or directory)");
+  // A directory opens as a stream that reads nothing: it was an empty trajectory, without a name.
+  const std::string dir = std::string(::testing::TempDir());
+  EXPECT_EQ(ErrorOf([&] { ReadTumTrajectory(dir); }), dir + ": is a directory, expected a file");
   EXPECT_EQ(ErrorOf([] { ReadKittiTrajectory("/nonexistent/a.kitti", 0.0); }),
             "/nonexistent/a.kitti: KITTI frame period must be a finite number > 0, got 0");
 }
@@ -183,6 +181,9 @@ TEST(Trajectory, WritersRejectWhatTheReadersWould) {
   const std::string path = TempPath("invalid.tum");
   EXPECT_NE(ErrorOf([&] { WriteTumTrajectory(path, trajectory); }).find(": pose 1 (time "), std::string::npos);
   EXPECT_NE(ErrorOf([&] { WriteKittiTrajectory(path, trajectory); }).find("): not finite"), std::string::npos);
+  trajectory[1].world_from_cam.translation.y() = 1e300;
+  EXPECT_NE(ErrorOf([&] { WriteTumTrajectory(path, trajectory); }).find("): translation beyond 1e+13 m"),
+            std::string::npos);
   trajectory[1].world_from_cam.translation.y() = 0.0;
   trajectory[2].time = 0.0;
   EXPECT_EQ(ErrorOf([&] { WriteTumTrajectory(path, trajectory); }), path + ": pose 2 (time 0): time goes backwards");

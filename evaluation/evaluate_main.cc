@@ -19,6 +19,7 @@
 #include <iostream>
 #include <string>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/script_runner.h"
 #include "dataset/trajectory.h"
@@ -140,6 +141,11 @@ int main(int argc, char** argv) {
 
   try {
     options.alignment = slt::AlignmentFromName(alignment);
+    if (!json_path.empty()) {
+      slt::RefuseOutputThatIsInput("--json", json_path, {gt_path, est_path});
+      slt::CheckWritable("--json", json_path);
+    }
+    if (!plot_path.empty()) slt::RefuseOutputThatIsInput("--plot", plot_path, {gt_path, est_path, json_path});
     const slt::Trajectory gt = ReadTrajectory(gt_path, gt_format, kitti_frame_period);
     const slt::Trajectory est = ReadTrajectory(est_path, est_format, kitti_frame_period);
     slt::TrajectoryErrors errors;
@@ -161,6 +167,12 @@ int main(int argc, char** argv) {
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(covariance_path + ": " + e.what());
       }
+    }
+    // The readers bound every value, so this is a defect, not bad input: never print a NaN
+    // (dumped as null) as if it were a measurement.
+    const std::string non_finite = slt::FindNonFiniteNumber(metrics);
+    if (!non_finite.empty()) {
+      throw std::runtime_error(est_path + " against " + gt_path + ": metric '" + non_finite + "' is not finite");
     }
     metrics["warnings"] = warning.empty() ? nlohmann::json::array() : nlohmann::json::array({warning});
     // Every output or none: the plot (the step most likely to fail) first.

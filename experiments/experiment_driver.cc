@@ -1,10 +1,14 @@
 #include "experiments/experiment_driver.h"
 
 #include <algorithm>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <filesystem>
 #include <stdexcept>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/script_runner.h"
 #include "common/machine_info.h"
@@ -23,57 +27,171 @@ void MakeDirectory(const std::string& dir) {
   if (error) throw std::runtime_error(dir + ": cannot create directory (" + error.message() + ")");
 }
 
-// Writes raw/, config.resolved.json, the summaries (a whole run) and run.json last, with
-// `info` (what the run or the merge adds) and the version, machine and command line.
-void WriteOutputs(const DriverOptions& options, const ExperimentConfig& config, const std::vector<TrialResult>& trials,
-                  const nlohmann::json& resolved, const nlohmann::json& info, std::chrono::steady_clock::time_point start) {
-  MakeDirectory(options.out_dir);
-  WriteRawResults(options.out_dir, config, trials);
-  WriteJsonFile(Join(options.out_dir, "config.resolved.json"), resolved);
-  if (options.run.shard.IsWhole()) WriteSummaries(options.out_dir, config, trials);
+// An out_dir that exists must be a directory: the swap would replace a file (a config given as
+// --out) with the results.
+void CheckOutputDir(const std::string& out_dir) {
+  std::error_code error;
+  if (fs::exists(out_dir, error) && !fs::is_directory(out_dir, error)) {
+    throw std::runtime_error("--out " + out_dir + ": exists and is not a directory");
+  }
+}
+
+// Replaces `out_dir` with the complete `staging` directory. Shard outputs under
+// out_dir/raw/shards/ belong to other runs (and may be what was just merged): they move into the
+// new directory.
+void SwapIntoPlace(const std::string& staging, const std::string& out_dir) {
+  std::error_code error;
+  if (fs::exists(out_dir, error)) {
+    const fs::path shards = fs::path(out_dir) / "raw" / "shards";
+    if (fs::exists(shards, error)) {
+      MakeDirectory(Join(staging, "raw"));
+      fs::rename(shards, fs::path(staging) / "raw" / "shards", error);
+      if (error) throw std::runtime_error(shards.string() + ": cannot move into " + staging + " (" + error.message() + ")");
+    }
+    const std::string old = out_dir + ".old." + std::to_string(::getpid());
+    fs::rename(out_dir, old, error);
+    if (error) throw std::runtime_error(out_dir + ": cannot move aside (" + error.message() + "); the new results are in " + staging);
+    fs::rename(staging, out_dir, error);
+    if (error) throw std::runtime_error(staging + ": cannot move to " + out_dir + " (" + error.message() + ")");
+    fs::remove_all(old, error);
+  } else {
+    fs::rename(staging, out_dir, error);
+    if (error) throw std::runtime_error(staging + ": cannot move to " + out_dir + " (" + error.message() + ")");
+  }
+}
+
+// Writes raw/, config.resolved.json, the summaries (a whole run) and run.json last into `dir`,
+// with `info` (what the run or the merge adds) and the version, machine and command line.
+void WriteOutputs(const std::string& dir, const DriverOptions& options, const ExperimentConfig& config,
+                  const std::vector<TrialResult>& trials, const nlohmann::json& resolved, const nlohmann::json& info,
+                  std::chrono::steady_clock::time_point start) {
+  MakeDirectory(dir);
+  WriteRawResults(dir, config, trials);
+  WriteJsonFile(Join(dir, "config.resolved.json"), resolved);
+  if (options.run.shard.IsWhole()) WriteSummaries(dir, config, trials);
   nlohmann::json run = VersionAndMachineJson(SourceDir());
   run["program"] = "run_experiment";
   run["command_line"] = options.command_line;
   run["config_file"] = options.config_file;
   run.update(info);
   run["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteJsonFile(Join(options.out_dir, "run.json"), run);
+  WriteJsonFile(Join(dir, "run.json"), run);
 }
+
+// The finished jobs of an earlier run of `resolved`, for --resume: the journal in the staging
+// directory, else a finished run in out_dir; none when neither exists. Throws when what is
+// there is a run of another config.
+std::vector<TrialResult> CompletedJobs(const std::string& out_dir, const ExperimentConfig& config,
+                                       const nlohmann::json& resolved) {
+  std::error_code error;
+  for (const std::string& dir : {StagingDir(out_dir), out_dir}) {
+    const std::string config_path = Join(dir, "config.resolved.json");
+    if (!fs::exists(config_path, error)) continue;
+    if (ReadJsonFile(config_path) != resolved) {
+      throw std::runtime_error("--resume: " + config_path +
+                               " is another config's (run without --resume to start afresh)");
+    }
+    if (!fs::exists(Join(dir, "raw/trials.csv"), error)) continue;
+    return ReadRawResults(dir, config);
+  }
+  return {};
+}
+
+// Rewrites the journal of finished jobs in the staging directory at most every few seconds (each
+// write is atomic, so an interruption leaves the previous one).
+class Journal {
+ public:
+  Journal(std::string dir, const ExperimentConfig& config, std::vector<TrialResult> completed)
+      : dir_(std::move(dir)), config_(config), trials_(std::move(completed)) {
+    // The reused jobs at once: an interruption before the first rewrite must not lose them.
+    if (!trials_.empty()) WriteRawResults(dir_, config_, trials_);
+  }
+  void Add(const TrialResult& trial) {
+    trials_.push_back(trial);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_write_ < std::chrono::seconds(5)) return;
+    WriteRawResults(dir_, config_, trials_);
+    last_write_ = now;
+  }
+
+ private:
+  std::string dir_;
+  const ExperimentConfig& config_;
+  std::vector<TrialResult> trials_;
+  std::chrono::steady_clock::time_point last_write_ = std::chrono::steady_clock::now();
+};
 
 }  // namespace
 
 ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::string started = UtcNow();
-  MakeDirectory(options.out_dir);
+  CheckOutputDir(options.out_dir);
   const nlohmann::json resolved = ResolvedConfigJson(config);  // fails early on bad tracker options
-  ExperimentRun run = RunExperiment(config, options.run);
+  const std::string staging = StagingDir(options.out_dir);
+  RunOptions run_options = options.run;
+  if (options.resume) run_options.completed = CompletedJobs(options.out_dir, config, resolved);
+  std::error_code error;
+  fs::remove_all(staging, error);
+  MakeDirectory(staging);
+  WriteJsonFile(Join(staging, "config.resolved.json"), resolved);
+  Journal journal(staging, config, run_options.completed);
+  run_options.on_trial = [&journal](const TrialResult& trial) { journal.Add(trial); };
+  ExperimentRun run = RunExperiment(config, run_options);
   const Shard& shard = options.run.shard;
-  WriteOutputs(options, config, run.trials, resolved,
+  WriteOutputs(staging, options, config, run.trials, resolved,
                {{"started_utc", started},
                 {"threads", run.threads},
                 {"jobs", {{"total", run.jobs_total}, {"run", run.trials.size()}}},
                 {"shard", shard.IsWhole() ? nlohmann::json(nullptr)
                                           : nlohmann::json({{"index", shard.index}, {"count", shard.count}})},
-                {"experiment_time_s", run.wall_time_s}},
+                {"experiment_time_s", run.wall_time_s},
+                {"resumed_jobs", run_options.completed.size()}},
                start);
+  SwapIntoPlace(staging, options.out_dir);
   return run;
 }
 
 MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const DriverOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::string started = UtcNow();
+  CheckOutputDir(options.out_dir);
+  const fs::path out = fs::weakly_canonical(fs::absolute(options.out_dir));
+  for (const std::string& dir : shard_dirs) {
+    // The swap replaces out_dir and keeps only its raw/shards/: a shard anywhere else in it
+    // (or out_dir itself) would be lost.
+    RefuseOutputThatIsInput("--out", options.out_dir, {dir});
+    const fs::path shard = fs::weakly_canonical(fs::absolute(dir));
+    const auto inside = [](const fs::path& path, const fs::path& root) {
+      const fs::path relative = path.lexically_relative(root);
+      return !relative.empty() && *relative.begin() != "..";
+    };
+    if (inside(shard, out) && !inside(shard, out / "raw" / "shards")) {
+      throw std::runtime_error("--out " + options.out_dir + ": holds the shard " + dir +
+                               " outside raw/shards/; the new results would replace it");
+    }
+  }
   MergedRun merged = MergeShardOutputs(shard_dirs);
+  const std::string staging = StagingDir(options.out_dir);
+  std::error_code error;
+  fs::remove_all(staging, error);
   double experiment_time = 0.0;  // the sum over the shards
   for (const nlohmann::json& shard : merged.shards) experiment_time += shard.value("experiment_time_s", 0.0);
-  WriteOutputs(options, merged.config, merged.trials, ResolvedConfigJson(merged.config),
+  WriteOutputs(staging, options, merged.config, merged.trials, ResolvedConfigJson(merged.config),
                {{"started_utc", started},
                 {"jobs", {{"total", merged.trials.size()}, {"merged", merged.trials.size()}}},
                 {"shard", nullptr},
                 {"merged_from", merged.shards},
                 {"experiment_time_s", experiment_time}},
                start);
+  SwapIntoPlace(staging, options.out_dir);
   return merged;
+}
+
+std::string StagingDir(const std::string& out_dir) {
+  std::string dir = fs::path(out_dir).lexically_normal().string();
+  while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  return dir + ".partial";
 }
 
 std::string DefaultOutputDir(const std::string& name) {

@@ -14,16 +14,28 @@ namespace slt {
 struct DriverOptions {
   std::string out_dir;
   RunOptions run;
+  // Reuse the completed jobs of an earlier run of the same resolved config: the journal of an
+  // interrupted run (StagingDir) or, when there is none, a finished run in out_dir.
+  bool resume = false;
   std::string config_file;                // recorded in run.json
   std::vector<std::string> command_line;  // recorded in run.json
 };
 
+// Where a run is written before it replaces out_dir: "<out_dir>.partial". While the jobs run it
+// holds config.resolved.json and a journal of the finished jobs (raw/, rewritten every few
+// seconds), which an interrupted run leaves behind for --resume.
+std::string StagingDir(const std::string& out_dir);
+
 // Runs the experiment (or the shard), then writes raw/, config.resolved.json, and, for a whole
-// run, the summaries; run.json last. Does not plot.
+// run, the summaries; run.json last. Everything is written into StagingDir(out_dir), which then
+// replaces out_dir whole (its raw/shards/, other runs' shard outputs, is kept): an interrupted
+// run never leaves new rows beside old summaries. Does not plot.
 ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& options);
 
 // Combines shard directories (MergeShardOutputs) into options.out_dir: raw/, summaries,
-// config.resolved.json, run.json (with every shard's run.json). Returns the merged run.
+// config.resolved.json, run.json (with every shard's run.json), written and swapped in as
+// RunAndWrite's. Refuses an out_dir that is one of the shards or holds one outside raw/shards/
+// (the swap would delete it). Returns the merged run.
 MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const DriverOptions& options);
 
 // The result directory of a config when --out is not given: <source tree>/results/<name> (or

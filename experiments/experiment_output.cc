@@ -47,6 +47,8 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"lost_few_inside_gate", "Lost frames: too few features inside the gate"},
     {"lost_no_update", "Lost frames: no update solution"},
     {"lost_non_finite", "Lost frames: non-finite state"},
+    {"lost_unconstrained", "Lost frames: a pose direction not measured"},
+    {"lost_few_agree", "Lost frames: under a quarter of the features agree"},
     {"features_unmatched", "Reference features not matched in both images, per frame"},
     {"features_degenerate", "Degenerate features per frame"},
     {"features_outside_gate", "Measurable features outside the gate, per frame"},

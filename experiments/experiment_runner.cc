@@ -137,6 +137,8 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   m[kLostFewInsideGate] = frames_with(StatusReason::kFewInsideGate);
   m[kLostNoUpdate] = frames_with(StatusReason::kNoUpdate);
   m[kLostNonFinite] = frames_with(StatusReason::kNonFinite);
+  m[kLostUnconstrained] = frames_with(StatusReason::kUnconstrained);
+  m[kLostFewAgree] = frames_with(StatusReason::kFewAgree);
   m[kFeaturesUnmatched] = unmatched / n;
   m[kFeaturesDegenerate] = degenerate / n;
   m[kFeaturesOutsideGate] = outside_gate / n;
@@ -190,19 +192,35 @@ ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& op
   ExperimentRun run;
   run.jobs_total = all_jobs.size();
   int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, jobs.size()))));
-  run.threads = threads;
   run.trials.resize(jobs.size());
+
+  // Jobs already run (--resume) are filled in; the others are run.
+  std::vector<size_t> to_run;
+  {
+    std::vector<const TrialResult*> by_job(all_jobs.size(), nullptr);
+    for (const TrialResult& t : options.completed) {
+      const size_t index = JobIndex(points.size(), config.trials, t.method_index, t.point_index, t.trial);
+      if (index < by_job.size()) by_job[index] = &t;
+    }
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      if (by_job[jobs[i].index] != nullptr) {
+        run.trials[i] = *by_job[jobs[i].index];
+      } else {
+        to_run.push_back(i);
+      }
+    }
+  }
 
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
-  std::mutex mutex;  // guards done, error and the progress callback
-  size_t done = 0;
+  std::mutex mutex;  // guards done, error and the callbacks
+  size_t done = jobs.size() - to_run.size();
   std::string error;
   auto worker = [&]() {
     while (!stop.load()) {
-      const size_t i = next.fetch_add(1);
-      if (i >= jobs.size()) return;
+      const size_t n = next.fetch_add(1);
+      if (n >= to_run.size()) return;
+      const size_t i = to_run[n];
       try {
         run.trials[i] = RunTrial(config, points, jobs[i]);
       } catch (const std::exception& e) {
@@ -213,9 +231,12 @@ ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& op
       }
       std::lock_guard<std::mutex> lock(mutex);
       ++done;
+      if (options.on_trial) options.on_trial(run.trials[i]);
       if (options.on_progress) options.on_progress(done, jobs.size());
     }
   };
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, to_run.size()))));
+  run.threads = threads;
   if (threads == 1) {
     worker();
   } else {

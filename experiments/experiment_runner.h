@@ -46,6 +46,12 @@ struct RunOptions {
   Shard shard;
   // Called after each finished job with (done, total), from one thread at a time.
   std::function<void(size_t, size_t)> on_progress;
+  // Called after each finished job with its result, from one thread at a time (the driver's
+  // journal for --resume).
+  std::function<void(const TrialResult&)> on_trial;
+  // Jobs already run (--resume): not run again; their results are returned as given. Results
+  // of jobs outside the shard are ignored.
+  std::vector<TrialResult> completed;
 };
 
 struct ExperimentRun {

@@ -116,7 +116,8 @@ TEST(Runner, CountsWhyFramesWereLostOrTookANewReference) {
   double new_references = 0, left_out = 0;
   for (const TrialResult& t : run.trials) {
     const auto& m = t.metrics;
-    EXPECT_EQ(m[kLostFrames], m[kLostFewMeasurable] + m[kLostFewInsideGate] + m[kLostNoUpdate] + m[kLostNonFinite]);
+    EXPECT_EQ(m[kLostFrames], m[kLostFewMeasurable] + m[kLostFewInsideGate] + m[kLostNoUpdate] + m[kLostNonFinite] +
+                                 m[kLostUnconstrained] + m[kLostFewAgree]);
     EXPECT_EQ(m[kNewReferences], m[kNewRefFewFeatures] + m[kNewRefFeatureFraction]);
     EXPECT_GE(m[kFeaturesUnmatched], 0.0);
     EXPECT_GE(m[kFeaturesDegenerate], 0.0);
@@ -228,6 +229,93 @@ TEST(Runner, FindsConfigsByName) {
   for (const char* name : {"noise_sweep", "loop", "ci/loop_ci"}) {
     EXPECT_NE(std::find(configs.begin(), configs.end(), name), configs.end()) << name;
   }
+}
+
+// Issue 21: a run is written into a fresh directory and swapped in whole; the shard outputs
+// under raw/shards/ stay; --resume reuses the journal an interrupted run leaves.
+TEST(Runner, RunReplacesTheOutputDirectoryWholeAndKeepsShards) {
+  ExperimentConfig c = TinyConfig();
+  c.trials = 1;
+  DriverOptions options;
+  options.out_dir = TempDir("swap");
+  WriteTextFileAtomically(options.out_dir + "/stale.csv", "from an earlier run\n");
+  fs::create_directories(options.out_dir + "/raw/shards/0-of-2");
+  WriteTextFileAtomically(options.out_dir + "/raw/shards/0-of-2/keep.txt", "a shard\n");
+  RunAndWrite(c, options);
+  EXPECT_FALSE(fs::exists(options.out_dir + "/stale.csv"));
+  EXPECT_TRUE(fs::exists(options.out_dir + "/summary.csv"));
+  EXPECT_EQ(ReadTextFile(options.out_dir + "/raw/shards/0-of-2/keep.txt"), "a shard\n");
+  EXPECT_FALSE(fs::exists(StagingDir(options.out_dir)));
+  for (const auto& entry : fs::directory_iterator(fs::path(options.out_dir).parent_path())) {
+    EXPECT_EQ(entry.path().filename().string().find("slt_experiments_swap."), std::string::npos) << entry.path();
+  }
+}
+
+TEST(Runner, ResumeReusesTheFinishedJobsOfTheSameConfig) {
+  const ExperimentConfig c = TinyConfig();
+  DriverOptions fresh;
+  fresh.out_dir = TempDir("resume_fresh");
+  const ExperimentRun full = RunAndWrite(c, fresh);
+  // What an interrupted run leaves: the config and a journal of some finished jobs.
+  DriverOptions resumed;
+  resumed.out_dir = TempDir("resume") + "/out";
+  resumed.resume = true;
+  const std::string staging = StagingDir(resumed.out_dir);
+  fs::create_directories(staging);
+  WriteJsonFile(staging + "/config.resolved.json", ResolvedConfigJson(c));
+  const std::vector<TrialResult> half(full.trials.begin(), full.trials.begin() + 10);
+  WriteRawResults(staging, c, half);
+  const ExperimentRun run = RunAndWrite(c, resumed);
+  EXPECT_EQ(ReadJsonFile(resumed.out_dir + "/run.json")["resumed_jobs"], 10);
+  EXPECT_FALSE(fs::exists(staging));
+  for (const char* file : {"raw/trials.csv", "raw/curves.csv", "summary.csv", "curves.csv"}) {
+    EXPECT_EQ(WithoutTiming(ReadCsvFile(fresh.out_dir + "/" + file)),
+              WithoutTiming(ReadCsvFile(resumed.out_dir + "/" + file)))
+        << file;
+  }
+  // The reused rows are the journal's (their timing too), not new runs.
+  ASSERT_EQ(run.trials.size(), full.trials.size());
+  for (size_t i = 0; i < half.size(); ++i) EXPECT_EQ(run.trials[i].metrics[kTimeMeanUs], full.trials[i].metrics[kTimeMeanUs]) << i;
+
+  // A finished run in --out is reused whole; another config's is refused.
+  const ExperimentRun again = RunAndWrite(c, resumed);
+  EXPECT_EQ(ReadJsonFile(resumed.out_dir + "/run.json")["resumed_jobs"], full.trials.size());
+  EXPECT_EQ(again.trials.back().metrics[kTimeMeanUs], run.trials.back().metrics[kTimeMeanUs]);
+  ExperimentConfig other = c;
+  other.seed = 99;
+  try {
+    RunAndWrite(other, resumed);
+    FAIL() << "resumed a run of another config";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is another config's"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Runner, MergeNeverOverwritesAShard) {
+  ExperimentConfig c = TinyConfig();
+  c.trials = 1;
+  const std::string root = TempDir("merge_out");
+  std::vector<std::string> shards;
+  for (int i = 0; i < 2; ++i) {
+    DriverOptions shard;
+    shard.out_dir = root + "/result/raw/shards/" + std::to_string(i) + "-of-2";
+    shard.run.shard = ParseShard(std::to_string(i) + "/2");
+    RunAndWrite(c, shard);
+    shards.push_back(shard.out_dir);
+  }
+  DriverOptions merged;
+  merged.out_dir = shards[0];
+  const std::string before = ReadTextFile(shards[0] + "/raw/trials.csv");
+  EXPECT_THROW(MergeAndWrite(shards, merged), std::runtime_error);
+  EXPECT_EQ(ReadTextFile(shards[0] + "/raw/trials.csv"), before);
+  merged.out_dir = root + "/result/raw";  // holds the shards outside raw/shards/
+  EXPECT_THROW(MergeAndWrite(shards, merged), std::runtime_error);
+  EXPECT_EQ(ReadTextFile(shards[0] + "/raw/trials.csv"), before);
+  // The usual layout: results/<name> with its shards under raw/shards/.
+  merged.out_dir = root + "/result";
+  MergeAndWrite(shards, merged);
+  EXPECT_TRUE(fs::exists(merged.out_dir + "/summary.csv"));
+  EXPECT_EQ(ReadTextFile(shards[0] + "/raw/trials.csv"), before);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // run_experiment: runs an experiment config (docs/experiments.md) and writes its raw rows,
 // summaries and plots.
 //
-//   run_experiment CONFIG [--out DIR] [--threads N] [--trials N] [--shard i/n] [--no-plots] [--quiet]
+//   run_experiment CONFIG [--out DIR] [--threads N] [--trials N] [--shard i/n] [--resume] [--no-plots] [--quiet]
 //   run_experiment --merge DIR... [--out DIR] [--no-plots] [--quiet]
 //
 // CONFIG is a path, or a bare name found in experiments/configs/ ("noise_sweep",
@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
 #include "experiments/experiment_driver.h"
@@ -37,13 +38,15 @@ int main(int argc, char** argv) {
   std::string config_arg, out_dir, shard_text;
   int threads = 0, trials = 0;
   std::vector<std::string> merge_dirs;
-  bool no_plots = false, quiet = false;
+  bool no_plots = false, quiet = false, resume = false;
   app.add_option("config", config_arg, "Experiment config: a path or a name in experiments/configs/");
   app.add_option("--out,-o", out_dir, "Output directory (default results/<name>)");
   app.add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 4096));
   app.add_option("--trials", trials, "Override the config's number of trials")->check(CLI::Range(1, 1000000));
   app.add_option("--shard", shard_text, "Run only the jobs with index % n == i (i/n); merge with --merge");
   app.add_option("--merge", merge_dirs, "Combine these shard output directories into one result");
+  app.add_flag("--resume", resume,
+               "Reuse the finished jobs of an interrupted (or earlier) run of the same resolved config in --out");
   app.add_flag("--no-plots", no_plots, "Do not draw the PNG plots");
   app.add_flag("--quiet,-q", quiet, "No progress bar, no final message");
   std::string configs;
@@ -56,8 +59,8 @@ int main(int argc, char** argv) {
     if (!merge_dirs.empty() && !config_arg.empty()) {
       throw CLI::ValidationError("--merge", "takes the config from the shard directories: give no CONFIG");
     }
-    if (!merge_dirs.empty() && (!shard_text.empty() || trials > 0)) {
-      throw CLI::ValidationError("--merge", "cannot be combined with --shard or --trials");
+    if (!merge_dirs.empty() && (!shard_text.empty() || trials > 0 || resume)) {
+      throw CLI::ValidationError("--merge", "cannot be combined with --shard, --trials or --resume");
     }
     if (!shard_text.empty()) {
       try {
@@ -73,7 +76,11 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  // An interrupted run leaves no temporary files; its finished jobs stay in the staging
+  // directory for --resume.
+  InstallTemporaryFileCleanup();
   DriverOptions options;
+  options.resume = resume;
   options.command_line.assign(argv, argv + argc);
   options.run.threads = threads;
   options.run.shard = shard;

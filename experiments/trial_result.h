@@ -41,6 +41,8 @@ enum TrialMetric {
   kLostFewInsideGate,      // fewer than two measurable features inside the gate
   kLostNoUpdate,           // the update found no solution
   kLostNonFinite,          // the state became non-finite
+  kLostUnconstrained,      // the features used do not measure every pose direction
+  kLostFewAgree,           // under a quarter of the measurable features agree with the pose
   // Mean over frames of the reference features left out of the update, by reason.
   kFeaturesUnmatched,      // not observed in both images
   kFeaturesDegenerate,     // no usable measurement

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "common/csv.h"
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/machine_info.h"
 #include "methods/pose_tracker.h"
@@ -221,6 +222,19 @@ int main(int argc, char** argv) {
   int bench_argc = static_cast<int>(args.size());
   benchmark::Initialize(&bench_argc, args.data());
   if (benchmark::ReportUnrecognizedArguments(bench_argc, args.data())) return 2;
+  // The outputs are checked before the benchmarks run (minutes), not after.
+  const std::vector<std::string> out_files = {"table1.json", "table1.md", "table1.tex"};
+  if (!out_dir.empty()) {
+    try {
+      std::error_code error;
+      std::filesystem::create_directories(out_dir, error);
+      if (error) throw std::runtime_error("--out " + out_dir + ": cannot create directory (" + error.message() + ")");
+      for (const std::string& file : out_files) CheckWritable("--out", (std::filesystem::path(out_dir) / file).string());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_table1: error: %s\n", e.what());
+      return 1;
+    }
+  }
 
   std::vector<Cell> cells;
   std::vector<std::string> methods;
@@ -273,8 +287,13 @@ int main(int argc, char** argv) {
   }
 
   TableReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const size_t benchmarks_run = benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
+  if (benchmarks_run == 0) {
+    // A table of "not run" cells would overwrite the measured one.
+    std::fprintf(stderr, "bench_table1: error: --benchmark_filter matches no benchmark; nothing written\n");
+    return 1;
+  }
 
   // Table 1, ours and the paper's.
   const std::string machine = CpuModel() + ", " + std::to_string(CpuCores()) + " cores, " + CompilerName() + " " + BuildType();
@@ -355,9 +374,9 @@ int main(int argc, char** argv) {
         tex += " \\\\\n";
       }
       tex += "\\bottomrule\n\\end{tabular}\n";
-      WriteJsonFile((std::filesystem::path(out_dir) / "table1.json").string(), j);
-      WriteTextFileAtomically((std::filesystem::path(out_dir) / "table1.md").string(), md);
-      WriteTextFileAtomically((std::filesystem::path(out_dir) / "table1.tex").string(), tex);
+      WriteJsonFile((std::filesystem::path(out_dir) / out_files[0]).string(), j);
+      WriteTextFileAtomically((std::filesystem::path(out_dir) / out_files[1]).string(), md);
+      WriteTextFileAtomically((std::filesystem::path(out_dir) / out_files[2]).string(), tex);
       std::cout << "bench_table1: wrote " << out_dir << "/table1.{md,tex,json}" << std::endl;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "bench_table1: error: %s\n", e.what());

@@ -56,8 +56,10 @@ enum class StatusReason {
   kFewInsideGate,       // lost: fewer than two measurable features inside the gate (eq. 20)
   kNoUpdate,            // lost: the update found no solution or re-gating left fewer than two
   kNonFinite,           // lost: the state became non-finite; restarted from the last good pose
+  kUnconstrained,       // lost: the features used do not measure every direction of the pose
+  kFewAgree,            // lost: under a quarter of the measurable features agree with the pose
 };
-inline constexpr int kNumStatusReasons = 8;
+inline constexpr int kNumStatusReasons = 10;
 
 inline const char* StatusReasonName(StatusReason reason) {
   switch (reason) {
@@ -69,6 +71,8 @@ inline const char* StatusReasonName(StatusReason reason) {
     case StatusReason::kFewInsideGate: return "few_inside_gate";
     case StatusReason::kNoUpdate: return "no_update";
     case StatusReason::kNonFinite: return "non_finite";
+    case StatusReason::kUnconstrained: return "unconstrained";
+    case StatusReason::kFewAgree: return "few_agree";
   }
   return "unknown";
 }
@@ -147,8 +151,11 @@ struct TrackedFrame {
   TrackerOutput output;
   double time_us = 0.0;
 };
-// Resets `tracker` with the sequence's rig, then tracks every frame in order, timing each
-// Track() call: the one loop that `track`, the experiment runner and the tests share.
+// One Track() call, timed.
+TrackedFrame TrackFrame(PoseTracker& tracker, const StereoFrame& frame);
+// Resets `tracker` with the sequence's rig, then tracks every frame in order (TrackFrame): the
+// loop that the experiment runner and the tests share (`track` streams its frames through
+// TrackFrame).
 std::vector<TrackedFrame> TrackSequence(PoseTracker& tracker, const StereoSequence& sequence);
 
 // Every registered tracker, in registration order.

@@ -45,16 +45,18 @@ std::unique_ptr<PoseTracker> CreateTracker(const std::string& name, const nlohma
   return FindTracker(name).create(options, where);
 }
 
+TrackedFrame TrackFrame(PoseTracker& tracker, const StereoFrame& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  TrackedFrame tracked{tracker.Track(frame), 0.0};
+  tracked.time_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  return tracked;
+}
+
 std::vector<TrackedFrame> TrackSequence(PoseTracker& tracker, const StereoSequence& sequence) {
   std::vector<TrackedFrame> frames;
   frames.reserve(sequence.frames.size());
   tracker.Reset(sequence.rig);
-  for (const StereoFrame& frame : sequence.frames) {
-    const auto start = std::chrono::steady_clock::now();
-    TrackedFrame tracked{tracker.Track(frame), 0.0};
-    tracked.time_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    frames.push_back(tracked);
-  }
+  for (const StereoFrame& frame : sequence.frames) frames.push_back(TrackFrame(tracker, frame));
   return frames;
 }
 

@@ -9,8 +9,11 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "common/csv.h"
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
@@ -60,11 +63,21 @@ int main(int argc, char** argv) {
     }
     if (input.empty()) throw CLI::RequiredError("--input");
     if (output.empty()) throw CLI::RequiredError("--output");
-    const StereoSequence sequence = ReadStereoLines(input);
-    const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
-
+    // Every output is checked before the (possibly long) tracking: none may be an input or
+    // another output, and each must be writable.
+    const std::vector<std::pair<std::string, std::string>> outputs = {
+        {"--output", output}, {"--kitti", kitti_path}, {"--log", log_path}};
+    std::vector<std::string> taken = {input, config_path};
+    for (const auto& [flag, path] : outputs) {
+      if (path.empty()) continue;
+      RefuseOutputThatIsInput(flag, path, taken);
+      CheckWritable(flag, path);
+      taken.push_back(path);
+    }
+    // Frame by frame: memory does not grow with the observations of a long sequence.
+    StereoLinesReader reader(input);
+    tracker->Reset(reader.rig());
     Trajectory trajectory;
-    trajectory.reserve(sequence.frames.size());
     std::ostringstream log;
     // The covariance of each pose (TrackerOutput::covariance, docs/formats.md): its upper
     // triangle, row by row, cov_<i><j> for i <= j; empty when the tracker has none.
@@ -78,19 +91,20 @@ int main(int argc, char** argv) {
     int by_reason[kNumStatusReasons] = {};
     long unmatched = 0, degenerate = 0, outside_gate = 0;
     double total_us = 0.0;
-    for (size_t k = 0; k < run.size(); ++k) {
-      const TrackerOutput& out = run[k].output;
-      const double time = sequence.frames[k].time;
-      total_us += run[k].time_us;
+    StereoFrame frame;
+    for (size_t k = 0; reader.Next(&frame); ++k) {
+      const TrackedFrame tracked = TrackFrame(*tracker, frame);
+      const TrackerOutput& out = tracked.output;
+      total_us += tracked.time_us;
       ++counts[static_cast<int>(out.status)];
       ++by_reason[static_cast<int>(out.reason)];
       unmatched += out.features_unmatched;
       degenerate += out.features_degenerate;
       outside_gate += out.features_outside_gate;
-      trajectory.push_back({time, out.cam_from_world.Inverse()});
-      log << k << "," << time << "," << TrackingStatusName(out.status) << "," << StatusReasonName(out.reason) << ","
+      trajectory.push_back({frame.time, out.cam_from_world.Inverse()});
+      log << k << "," << frame.time << "," << TrackingStatusName(out.status) << "," << StatusReasonName(out.reason) << ","
           << out.features_available << "," << out.features_used << "," << out.features_unmatched << ","
-          << out.features_degenerate << "," << out.features_outside_gate << "," << run[k].time_us;
+          << out.features_degenerate << "," << out.features_outside_gate << "," << tracked.time_us;
       for (int i = 0; i < 6; ++i) {
         for (int j = i; j < 6; ++j) {
           log << "," << (out.has_covariance ? FormatDouble(out.covariance(i, j)) : std::string());
@@ -103,8 +117,8 @@ int main(int argc, char** argv) {
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
     std::fprintf(stderr,
                  "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost, %d degraded), %.1f us per frame\n",
-                 method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2], counts[3],
-                 sequence.frames.empty() ? 0.0 : total_us / sequence.frames.size());
+                 method.c_str(), trajectory.size(), counts[0], counts[1], counts[2], counts[3],
+                 trajectory.empty() ? 0.0 : total_us / trajectory.size());
     // Why: frames by reason (the first frame's aside), then the features left out.
     std::string reasons;
     for (int r = static_cast<int>(StatusReason::kFewFeaturesLeft); r < kNumStatusReasons; ++r) {

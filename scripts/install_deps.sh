@@ -14,6 +14,7 @@ packages=(
   nlohmann-json3-dev       # JSON configs and the stereo-lines/1 format
   libcli11-dev             # command-line parsing
   python3-matplotlib python3-numpy      # plots, for /usr/bin/python3
+  clang libclang-rt-14-dev # libFuzzer, ASan + UBSan (scripts/sanitizer_tests.sh)
 )
 
 missing=()

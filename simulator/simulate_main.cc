@@ -17,7 +17,9 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
@@ -82,11 +84,7 @@ int main(int argc, char** argv) {
     std::string where = "defaults";
     if (config_path == "-") {
       where = "<stdin>";
-      try {
-        document = nlohmann::json::parse(std::cin);
-      } catch (const nlohmann::json::parse_error& e) {
-        throw ConfigError(where + ": invalid JSON (" + e.what() + ")");
-      }
+      document = ParseJson(std::cin, where);
     } else if (!config_path.empty()) {
       where = config_path;
       document = ReadJsonFile(config_path);
@@ -99,19 +97,28 @@ int main(int argc, char** argv) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) throw std::runtime_error(out_dir + ": cannot create directory (" + error.message() + ")");
-    WriteStereoLines((dir / "seq.json").string(), result.sequence);
-    WriteTumTrajectory((dir / "gt.tum").string(), result.ground_truth);
-    WriteTextFileAtomically((dir / "scene.csv").string(), SceneCsv(result.lines));
-    if (images) {
-      // One OpenCV thread per render thread: the frames are the parallel work.
-      cv::setNumThreads(1);
-      const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-      WriteEurocSequence(out_dir, result, config, workers, [](int done, int total) {
-        std::fprintf(stderr, "\rsimulate: rendering frame %d/%d", done, total);
-        if (done == total) std::fprintf(stderr, "\n");
-      });
+    const std::vector<std::string> outputs = {(dir / "seq.json").string(), (dir / "gt.tum").string(),
+                                              (dir / "scene.csv").string(), (dir / "config.resolved.json").string()};
+    for (const std::string& output : outputs) RefuseOutputThatIsInput("--out", output, {config_path});
+    // All outputs or none: a failure after the first file removes the files this run writes.
+    try {
+      WriteStereoLines(outputs[0], result.sequence);
+      WriteTumTrajectory(outputs[1], result.ground_truth);
+      WriteTextFileAtomically(outputs[2], SceneCsv(result.lines));
+      if (images) {
+        // One OpenCV thread per render thread: the frames are the parallel work.
+        cv::setNumThreads(1);
+        const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        WriteEurocSequence(out_dir, result, config, workers, [](int done, int total) {
+          std::fprintf(stderr, "\rsimulate: rendering frame %d/%d", done, total);
+          if (done == total) std::fprintf(stderr, "\n");
+        });
+      }
+      WriteJsonFile(outputs[3], SimulationConfigToJson(config));
+    } catch (...) {
+      for (const std::string& output : outputs) std::filesystem::remove(output, error);
+      throw;
     }
-    WriteJsonFile((dir / "config.resolved.json").string(), SimulationConfigToJson(config));
 
     std::size_t observations = 0;
     for (const StereoFrame& frame : result.sequence.frames) observations += frame.left.size() + frame.right.size();

@@ -39,6 +39,13 @@ const EnumNames<EndpointModel>& EndpointModels() {
 // Lengths, angles and rates: finite and at least `lo`.
 NumberRange FiniteAtLeast(double lo) { return AtLeast(lo).Finite(); }
 NumberRange FinitePositive() { return Positive().Finite(); }
+// Upper bounds on what sizes the work and the memory of a simulation (docs/simulation.md,
+// "Bounds"): beyond them a config ran for minutes or ended in std::bad_alloc. Generous for any
+// experiment: 100 000 frames of 49 lines are ~0.5 GB of observations.
+constexpr int kMaxFrames = 100000;
+constexpr int kMaxPaperLines = 100000;
+constexpr double kMaxSceneSizeM = 1000.0;     // room and corridor sides, paper box and segments
+constexpr double kMaxStepM = 10.0;            // per-frame translations and wobbles
 
 // null or absent: no override.
 void ReadSeedOverride(JsonReader& r, const std::string& key, std::optional<std::uint64_t>* value) {
@@ -83,8 +90,8 @@ const OptionSchema<PaperSceneConfig>& PaperSceneSchema() {
   using C = PaperSceneConfig;
   static const OptionSchema<C> schema =
       Vector3Field(Vector3Field(OptionSchema<C>()
-                                    .Field("lines", &C::lines, AtLeast(1), "random segments")
-                                    .Field("min_length_m", &C::min_length_m, FinitePositive(), "shortest segment (m)")
+                                    .Field("lines", &C::lines, InRange(1, kMaxPaperLines), "random segments")
+                                    .Field("min_length_m", &C::min_length_m, InRange(0.0, kMaxSceneSizeM, "(]"), "shortest segment (m)")
                                     .Field("max_length_m", &C::max_length_m, AnyNumber(), "longest segment (m)"),
                                 "box_center_m", &C::box_center_m, "centre of the box of midpoints (world, m)"),
                    "box_size_m", &C::box_size_m, "size of that box (m)")
@@ -92,13 +99,20 @@ const OptionSchema<PaperSceneConfig>& PaperSceneSchema() {
                  "fraction of the lines on cuboid pieces (rectangles, box corners) instead of random segments")
           .Check("max_length_m",
                  [](const C& c) {
-                   return c.max_length_m >= c.min_length_m && std::isfinite(c.max_length_m)
+                   return c.max_length_m >= c.min_length_m && c.max_length_m <= kMaxSceneSizeM
                               ? ""
-                              : "must be finite and >= scene.paper.min_length_m";
+                              : "must be >= scene.paper.min_length_m and <= 1000";
                  })
-          .Check("box_center_m", [](const C& c) { return c.box_center_m.allFinite() ? "" : "must be finite"; })
+          .Check("box_center_m", [](const C& c) {
+            return c.box_center_m.allFinite() && c.box_center_m.cwiseAbs().maxCoeff() <= kMaxSceneSizeM
+                       ? ""
+                       : "must be finite, each coordinate within [-1000, 1000]";
+          })
           .Check("box_size_m", [](const C& c) {
-            return c.box_size_m.allFinite() && !(c.box_size_m.array() < 0.0).any() ? "" : "must be finite and >= 0";
+            return c.box_size_m.allFinite() && !(c.box_size_m.array() < 0.0).any() &&
+                           c.box_size_m.maxCoeff() <= kMaxSceneSizeM
+                       ? ""
+                       : "must be finite, each in [0, 1000]";
           });
   return schema;
 }
@@ -108,9 +122,9 @@ const OptionSchema<RoomSceneConfig>& RoomSceneSchema() {
   using C = RoomSceneConfig;
   static const OptionSchema<C> schema =
       OptionSchema<C>()
-          .Field("width_m", &C::width_m, FiniteAtLeast(4.6), "along x (m)")
-          .Field("depth_m", &C::depth_m, FiniteAtLeast(4.0), "along z (m)")
-          .Field("height_m", &C::height_m, FiniteAtLeast(2.3), "floor to ceiling (m)")
+          .Field("width_m", &C::width_m, InRange(4.6, kMaxSceneSizeM), "along x (m)")
+          .Field("depth_m", &C::depth_m, InRange(4.0, kMaxSceneSizeM), "along z (m)")
+          .Field("height_m", &C::height_m, InRange(2.3, kMaxSceneSizeM), "floor to ceiling (m)")
           .Field("camera_height_m", &C::camera_height_m, AnyNumber(), "camera above the floor (m)")
           .Check("camera_height_m", [](const C& c) { return FloorToCeiling(c.camera_height_m, c.height_m); });
   return schema;
@@ -120,9 +134,9 @@ const OptionSchema<CorridorSceneConfig>& CorridorSceneSchema() {
   using C = CorridorSceneConfig;
   static const OptionSchema<C> schema =
       OptionSchema<C>()
-          .Field("width_m", &C::width_m, FiniteAtLeast(1.2), "(m)")
-          .Field("height_m", &C::height_m, FiniteAtLeast(2.3), "(m)")
-          .Field("length_m", &C::length_m, FiniteAtLeast(6.0), "(m)")
+          .Field("width_m", &C::width_m, InRange(1.2, kMaxSceneSizeM), "(m)")
+          .Field("height_m", &C::height_m, InRange(2.3, kMaxSceneSizeM), "(m)")
+          .Field("length_m", &C::length_m, InRange(6.0, kMaxSceneSizeM), "(m)")
           .Field("camera_height_m", &C::camera_height_m, AnyNumber(), "camera above the floor (m)")
           .Check("camera_height_m", [](const C& c) { return FloorToCeiling(c.camera_height_m, c.height_m); });
   return schema;
@@ -144,14 +158,14 @@ const OptionSchema<SinusoidMotionConfig>& SinusoidMotionSchema() {
       OptionSchema<C>()
           .Field("max_rotation_deg", &C::max_rotation_deg, InRange(0.0, 180.0, "[)").Finite(),
                  "bound of the per-frame rotation (deg)")
-          .Field("max_translation_m", &C::max_translation_m, FiniteAtLeast(0.0), "bound of the per-frame translation (m)")
+          .Field("max_translation_m", &C::max_translation_m, InRange(0.0, kMaxStepM), "bound of the per-frame translation (m)")
           // Below 2 frames a sampled sinusoid aliases into a slower one.
-          .Field("period_min_frames", &C::period_min_frames, FiniteAtLeast(2.0), "shortest period (frames)")
+          .Field("period_min_frames", &C::period_min_frames, InRange(2.0, 1e9), "shortest period (frames)")
           .Field("period_max_frames", &C::period_max_frames, AnyNumber(), "longest period (frames)")
           .Check("period_max_frames", [](const C& c) {
-            return c.period_max_frames >= c.period_min_frames && std::isfinite(c.period_max_frames)
+            return c.period_max_frames >= c.period_min_frames && c.period_max_frames <= 1e9
                        ? ""
-                       : "must be finite and >= motion.sinusoid.period_min_frames";
+                       : "must be >= motion.sinusoid.period_min_frames and <= 1e9";
           });
   return schema;
 }
@@ -160,10 +174,10 @@ const OptionSchema<LoopMotionConfig>& LoopMotionSchema() {
   using C = LoopMotionConfig;
   static const OptionSchema<C> schema =
       OptionSchema<C>()
-          .Field("radius_x_m", &C::radius_x_m, FiniteAtLeast(0.0), "ellipse semi-axis along x (m)")
-          .Field("radius_z_m", &C::radius_z_m, FiniteAtLeast(0.0), "ellipse semi-axis along z (m)")
+          .Field("radius_x_m", &C::radius_x_m, InRange(0.0, kMaxSceneSizeM), "ellipse semi-axis along x (m)")
+          .Field("radius_z_m", &C::radius_z_m, InRange(0.0, kMaxSceneSizeM), "ellipse semi-axis along z (m)")
           .Field("yaw_amplitude_deg", &C::yaw_amplitude_deg, InRange(0.0, 90.0, "[)").Finite(), "yaw swing (deg)")
-          .Field("wobble_height_m", &C::wobble_height_m, FiniteAtLeast(0.0), "up/down wobble (m)")
+          .Field("wobble_height_m", &C::wobble_height_m, InRange(0.0, kMaxStepM), "up/down wobble (m)")
           .Field("wobble_deg", &C::wobble_deg, InRange(0.0, 45.0, "[)").Finite(), "pitch/roll wobble (deg)");
   return schema;
 }
@@ -172,11 +186,11 @@ const OptionSchema<ForwardMotionConfig>& ForwardMotionSchema() {
   using C = ForwardMotionConfig;
   static const OptionSchema<C> schema =
       OptionSchema<C>()
-          .Field("step_m", &C::step_m, FiniteAtLeast(0.0), "forward step per frame (m)")
-          .Field("wobble_m", &C::wobble_m, FiniteAtLeast(0.0), "sideways wobble (m)")
+          .Field("step_m", &C::step_m, InRange(0.0, kMaxStepM), "forward step per frame (m)")
+          .Field("wobble_m", &C::wobble_m, InRange(0.0, kMaxStepM), "sideways wobble (m)")
           .Field("wobble_deg", &C::wobble_deg, InRange(0.0, 45.0, "[)").Finite(), "rotation wobble (deg)")
           // The shortest drawn period is half of this: keep it >= 2 frames (no aliasing).
-          .Field("wobble_period_frames", &C::wobble_period_frames, FiniteAtLeast(4.0), "wobble period (frames)");
+          .Field("wobble_period_frames", &C::wobble_period_frames, InRange(4.0, 1e9), "wobble period (frames)");
   return schema;
 }
 
@@ -263,8 +277,9 @@ const OptionSchema<SimulationConfig>& SimulationSchema() {
       OptionSchema<C>()
           .Field("seed", &C::seed, AnyNumber(), "base seed of every stream")
           .Child("seeds", &C::seeds, SeedOverridesSchema(), "per-stream base seeds")
-          .Field("frames", &C::frames, AtLeast(1), "frames")
-          .Field("frame_rate", &C::frame_rate, FinitePositive(), "Hz")
+          .Field("frames", &C::frames, InRange(1, kMaxFrames), "frames")
+          // Frame times k / frame_rate stay well inside the trajectory files' range.
+          .Field("frame_rate", &C::frame_rate, InRange(1e-3, 1e4), "Hz")
           .Custom(
               "rig",
               [](JsonReader& r, C* c) {

@@ -113,6 +113,24 @@ TEST(SimulationConfig, SeedOverrides) {
   EXPECT_EQ(c.OutlierSeed(), 5u);
 }
 
+// Values that ended in std::bad_alloc, ran for minutes, or failed only when the outputs were
+// written (issue 21) are refused where the config is read.
+TEST(SimulationConfig, SizesAreBounded) {
+  EXPECT_EQ(ConfigErrorOf(R"({"frames": 1000000000})"), "sim.json: key 'frames': must be in [1, 100000]");
+  EXPECT_EQ(ConfigErrorOf(R"({"frame_rate": 1e-308})"), "sim.json: key 'frame_rate': must be in [0.001, 10000]");
+  EXPECT_EQ(ConfigErrorOf(R"({"scene": {"type": "corridor", "corridor": {"length_m": 1e308}}})"),
+            "sim.json: key 'scene.corridor.length_m': must be in [6, 1000]");
+  EXPECT_EQ(ConfigErrorOf(R"({"scene": {"type": "room", "room": {"width_m": 1e6}}})"),
+            "sim.json: key 'scene.room.width_m': must be in [4.6, 1000]");
+  EXPECT_EQ(ConfigErrorOf(R"({"motion": {"forward": {"step_m": 1e308}}})"),
+            "sim.json: key 'motion.forward.step_m': must be in [0, 10]");
+  EXPECT_EQ(ConfigErrorOf(R"({"scene": {"paper": {"lines": 2000000000}}})"),
+            "sim.json: key 'scene.paper.lines': must be in [1, 100000]");
+  EXPECT_EQ(ConfigErrorOf(R"({"scene": {"paper": {"box_size_m": [1, 1, 1e300]}}})"),
+            "sim.json: key 'scene.paper.box_size_m': must be finite, each in [0, 1000]");
+  EXPECT_EQ(ConfigErrorOf(R"({"frames": 100000, "frame_rate": 10000})"), "");
+}
+
 TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_px": -1}})"),
             "sim.json: key 'noise.endpoint_px': must be a finite number >= 0");
@@ -121,7 +139,7 @@ TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_pix": 1}})"), "sim.json: key 'noise.endpoint_pix': unknown key");
   EXPECT_EQ(ConfigErrorOf(R"({"nosie": {}})"), "sim.json: key 'nosie': unknown key");
   EXPECT_EQ(ConfigErrorOf(R"({"frames": 2.5})"), "sim.json: key 'frames': expected an integer, got 2.5");
-  EXPECT_EQ(ConfigErrorOf(R"({"frames": 0})"), "sim.json: key 'frames': must be >= 1");
+  EXPECT_EQ(ConfigErrorOf(R"({"frames": 0})"), "sim.json: key 'frames': must be in [1, 100000]");
   EXPECT_EQ(ConfigErrorOf(R"({"seed": -3})"), "sim.json: key 'seed': expected a non-negative integer, got -3");
   EXPECT_EQ(ConfigErrorOf(R"({"seeds": {"noise": "x"}})"),
             "sim.json: key 'seeds.noise': expected a non-negative integer, got \"x\"");
@@ -135,8 +153,8 @@ TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"focal_error_px": -900})"),
             "sim.json: key 'focal_error_px': makes a focal length of the tracker's rig non-positive");
   EXPECT_EQ(ConfigErrorOf(R"({"motion": {"sinusoid": {"period_min_frames": 30, "period_max_frames": 20}}})"),
-            "sim.json: key 'motion.sinusoid.period_max_frames': must be finite and >= "
-            "motion.sinusoid.period_min_frames");
+            "sim.json: key 'motion.sinusoid.period_max_frames': must be >= "
+            "motion.sinusoid.period_min_frames and <= 1e9");
   EXPECT_EQ(ConfigErrorOf(R"({"observation": {"min_length_px": 300}})"),
             "sim.json: key 'observation.min_length_px': must be at most half the smaller image side");
   EXPECT_EQ(ConfigErrorOf(R"({"images": {"vignetting": 1.5}})"), "sim.json: key 'images.vignetting': must be in [0, 1)");

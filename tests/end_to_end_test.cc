@@ -9,6 +9,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/stat.h>
+
+#include "common/csv.h"
 #include "common/json_reader.h"
 #include "dataset/trajectory.h"
 
@@ -266,6 +269,67 @@ TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.output.find("--method"), std::string::npos);
 }
+
+// Outputs that would destroy an input, or that cannot be written, are refused before any work
+// (issue 21): the input survives and no output is written.
+TEST_F(EndToEnd, OutputsAreCheckedBeforeTracking) {
+  const std::string source = std::string(SLT_SOURCE_DIR) + "/dataset/testdata/handwritten.stereo-lines.json";
+  fs::copy_file(source, Path("seq.json"));
+  const std::string original = ReadTextFile(Path("seq.json"));
+  const std::string track = Bin("track") + " --method trifocal_line_ekf --input " + Path("seq.json");
+  Result r = RunCommand(track + " --output " + Path("seq.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  ExpectOneErrorLine(r.output);
+  EXPECT_NE(r.output.find("--output " + Path("seq.json") + ": is also an input"), std::string::npos) << r.output;
+  EXPECT_EQ(ReadTextFile(Path("seq.json")), original);
+  r = RunCommand(track + " --output " + Path("t.tum") + " --log " + Path("no/such/dir/log.csv"));
+  EXPECT_EQ(r.exit_code, 1);
+  ExpectOneErrorLine(r.output);
+  EXPECT_NE(r.output.find("--log " + Path("no/such/dir/log.csv") + ": cannot write"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(Path("t.tum"))) << "the TUM file was written before the --log error";
+  r = RunCommand(track + " --output " + Path("t.tum") + " --kitti " + Path("t.tum"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("--kitti " + Path("t.tum") + ": is also an input"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(Path("t.tum")));
+
+  // A FIFO is written directly, not replaced by a regular file.
+  ASSERT_EQ(::mkfifo(Path("pipe").c_str(), 0600), 0);
+  r = RunCommand("(cat " + Path("pipe") + " > " + Path("from_pipe.tum") + " &) ; " + track + " --output " + Path("pipe"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::is_fifo(Path("pipe")));
+
+  // evaluate: --out equal to --est is refused; metrics are never printed as null.
+  r = RunCommand(track + " --output " + Path("t.tum"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string original_tum = ReadTextFile(Path("t.tum"));
+  r = RunCommand(Bin("evaluate") + " --gt " + Path("t.tum") + " --est " + Path("t.tum") + " --out " + Path("t.tum"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("--out " + Path("t.tum") + ": is also an input"), std::string::npos) << r.output;
+  EXPECT_EQ(ReadTextFile(Path("t.tum")), original_tum);
+  std::ofstream(Path("far.tum")) << "0 1e308 0 0 0 0 0 1\n0.05 1e308 0 0 0 0 0 1\n";
+  r = RunCommand(Bin("evaluate") + " --gt " + Path("t.tum") + " --est " + Path("far.tum"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output.find("null"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(Path("far.tum") + ":1: translation 1e+308 beyond"), std::string::npos) << r.output;
+}
+
+#ifdef SLT_HAS_BENCH_TABLE1
+// A filter matching nothing wrote a table of "not run" cells over the measured one; an
+// unwritable --out was noticed after minutes of benchmarks.
+TEST_F(EndToEnd, BenchTable1RefusesEmptyRunsAndUnwritableOutputs) {
+  std::ofstream(Path("table1.md")) << "measured\n";
+  Result r = RunCommand(Bin("bench_table1") + " --benchmark_filter=no_such_benchmark --out " + dir_.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("bench_table1: error: --benchmark_filter matches no benchmark"), std::string::npos) << r.output;
+  EXPECT_EQ(ReadTextFile(Path("table1.md")), "measured\n");
+  // The filter would run a benchmark: the --out error must come first.
+  std::ofstream(Path("file")) << "";
+  r = RunCommand(Bin("bench_table1") + " --benchmark_filter=Table1/ --out " + Path("file/sub"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("bench_table1: error: --out " + Path("file/sub")), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("Table1/"), std::string::npos) << "benchmarks ran before the --out check: " << r.output;
+}
+#endif
 
 }  // namespace
 }  // namespace slt

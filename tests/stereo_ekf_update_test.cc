@@ -335,18 +335,19 @@ TEST(FirstUpdate, HealthCountsTheRowsMeasured) {
   }
 }
 
-TEST(FirstUpdate, DegradedWhenAPoseDirectionIsNotMeasured) {
+TEST(FirstUpdate, LostWhenAPoseDirectionIsNotMeasured) {
   // Features with a zero Jacobian measure nothing about the pose (H = 0): the update runs, its
-  // cost is healthy, but the pose is the prior's alone, and the tracker says so; report_degraded
-  // off (the paper preset's choice) keeps the paper's statuses.
+  // cost is healthy, but the pose is the prior's alone, and the tracker says lost whatever
+  // report_degraded is (issue 21: a tracker that cannot constrain 6 DoF says lost).
   for (const bool report : {true, false}) {
     StereoEkfOptions options = PaperFilter(true);
     options.report_degraded = report;
     StereoEkfTracker tracker(options, TwoRowFeatures(std::vector<double>(5, 1.0)), nlohmann::json::object());
     const TrackerOutput out = TrackFirstUpdate(&tracker);
     ASSERT_EQ(out.features_used, 5);
-    EXPECT_EQ(out.status, report ? TrackingStatus::kDegraded : TrackingStatus::kTracking);
-    EXPECT_EQ(tracker.counters().degraded_frames, report ? 1 : 0);
+    EXPECT_EQ(out.status, TrackingStatus::kLost);
+    EXPECT_EQ(out.reason, StatusReason::kUnconstrained);
+    EXPECT_EQ(tracker.counters().degraded_frames, 0);
   }
   // Random Jacobians measure every direction: tracking.
   StereoEkfOptions options = PaperFilter(true);

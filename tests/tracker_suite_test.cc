@@ -204,6 +204,35 @@ TEST_P(TrackerSuite, ListsEveryOptionItTakes) {
   EXPECT_NE(FormatOptionDocs(docs).find("filter."), std::string::npos);
 }
 
+TEST_P(TrackerSuite, OneLineCannotTrack) {
+  // One line leaves at least the rotation about itself unmeasured (and two stereo points on it
+  // the same): a frame measured with it alone is not tracked. yu_point_ekf said "tracking"
+  // 18.7 deg off (issue 21).
+  if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker: never moves by construction";
+  const SimulatedSequence full = Simulated({{"frames", 30}, {"noise", {{"endpoint_px", 1.0}}}});
+  const StereoSequence one_line = KeepLines(full.sequence, WellConditionedLines(full, 1));
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, one_line);
+  for (size_t k = 1; k < run.outputs.size(); ++k) {
+    EXPECT_EQ(run.outputs[k].status, TrackingStatus::kLost) << "frame " << k;
+  }
+}
+
+TEST_P(TrackerSuite, EveryLineAnOutlierIsNeverTracking) {
+  // Every segment replaced by a random one: the few that fit some pose by chance must not be
+  // reported as tracking (both EKFs did on 8-14 of 100 frames, 69-118 deg off; issue 21).
+  if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker: never moves by construction";
+  // Known failure, left to the tracker's owner (issue 21): taylor_line_sfm reports tracking on
+  // frames 2 and 97 of this sequence.
+  if (GetParam() == "taylor_line_sfm") GTEST_SKIP() << "known failure: says tracking on 2 of 99 outlier frames";
+  const SimulatedSequence sim = Simulated({{"frames", 100}, {"noise", {{"endpoint_px", 1.0}}}, {"outliers", {{"rate", 1.0}}}});
+  auto tracker = Make();
+  const TrackRun run = RunTracker(*tracker, sim.sequence);
+  for (size_t k = 1; k < run.outputs.size(); ++k) {
+    EXPECT_NE(run.outputs[k].status, TrackingStatus::kTracking) << "frame " << k;
+  }
+}
+
 TEST_P(TrackerSuite, DeterministicAcrossResets) {
   const SimulatedSequence sim = Simulated({{"frames", 30}, {"outliers", {{"rate", 0.1}}}});
   auto tracker = Make();

@@ -22,6 +22,14 @@ constexpr double kMinInlierFraction = 0.5;
 constexpr double kMaxNormalizedCost = 2.0;
 // The standard normal's 99.9 % quantile (of the Wilson-Hilferty bound in HealthyCost).
 constexpr double kStandardNormal999 = 3.09;
+// Below this ratio of the smallest to the largest eigenvalue of the measurement information the
+// used features do not constrain all six degrees of freedom of the pose (rounding level: an
+// exactly unobserved direction gives ~1e-16).
+constexpr double kMinRelativeInformation = 1e-9;
+// A frame whose update uses fewer than this fraction of the measurable features is reported
+// lost: when every segment is an outlier, a few of them still fit some pose by chance, and
+// that pose is no measurement of the camera (issue 21).
+constexpr double kMinUsedFraction = 0.25;
 // The median of chi-square(4), ChiSquareQuantile(0.5, 4) = 3.3567, rounded as when the
 // noise-scale adaptation was measured. Kept: the exact value changes almost every trial of every
 // experiment with adaptive noise (last digits of the errors), and every committed result with it.
@@ -372,7 +380,21 @@ void StereoEkfTracker::Assess(FrameState* state) {
     AdaptNoiseScale(rows);
     const bool constrained = ConstrainsEveryDirection(frame_information_);
     out.status = TrackingStatus::kTracking;
-    if (options_.report_degraded && (!healthy_ || !constrained)) {
+    if (!constrained) {
+      // The update moved the pose only along the directions the features see (one line, or
+      // points on one line, leave a rotation free): the rest is the prediction, so say lost
+      // (issue 21). Only the status: the filter goes on as before.
+      ++counters_.lost_frames;
+      out.status = TrackingStatus::kLost;
+      out.reason = StatusReason::kUnconstrained;
+    } else if (state->used < kMinUsedFraction * state->valid) {
+      // Most measurable features disagree with the pose: a handful of segments that fit it by
+      // chance (every segment an outlier) is no evidence of where the camera is.
+      ++counters_.lost_frames;
+      out.status = TrackingStatus::kLost;
+      out.reason = StatusReason::kFewAgree;
+    } else if (options_.report_degraded && !healthy_) {
+      // Measured, but the posterior cost is implausible for its degrees of freedom.
       ++counters_.degraded_frames;
       out.status = TrackingStatus::kDegraded;
     }

@@ -1,0 +1,143 @@
+#include "common/file_io.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+namespace slt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Temporary files in flight, for the signal handler: it may only read these pointers and call
+// unlink(), both async-signal-safe. A writer claims a free slot (nullptr) for the lifetime of
+// its temporary name.
+constexpr int kTemporarySlots = 64;
+std::atomic<const char*> g_temporary_files[kTemporarySlots];
+
+class TemporaryFileSlot {
+ public:
+  explicit TemporaryFileSlot(const std::string& path) {
+    for (int i = 0; i < kTemporarySlots; ++i) {
+      const char* expected = nullptr;
+      if (g_temporary_files[i].compare_exchange_strong(expected, path.c_str())) {
+        slot_ = i;
+        return;
+      }
+    }
+  }
+  ~TemporaryFileSlot() {
+    if (slot_ >= 0) g_temporary_files[slot_].store(nullptr);
+  }
+  TemporaryFileSlot(const TemporaryFileSlot&) = delete;
+  TemporaryFileSlot& operator=(const TemporaryFileSlot&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+extern "C" void RemoveTemporaryFilesAndDie(int signal_number) {
+  for (auto& slot : g_temporary_files) {
+    const char* path = slot.load();
+    if (path != nullptr) ::unlink(path);
+  }
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+std::string ErrnoText() { return std::strerror(errno); }
+
+}  // namespace
+
+std::ifstream OpenInputFile(const std::string& path) {
+  std::error_code error;
+  if (fs::is_directory(path, error)) throw std::runtime_error(path + ": is a directory, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open file (" + ErrnoText() + ")");
+  return in;
+}
+
+bool SamePath(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return false;
+  std::error_code error;
+  if (fs::exists(a, error) && fs::exists(b, error)) {
+    const bool same = fs::equivalent(a, b, error);
+    if (!error) return same;
+  }
+  return fs::weakly_canonical(fs::absolute(a), error) == fs::weakly_canonical(fs::absolute(b), error);
+}
+
+void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
+                             const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs) {
+    if (SamePath(output, input)) {
+      throw std::runtime_error(what + " " + output + ": is also an input (" + input + "); refusing to overwrite it");
+    }
+  }
+}
+
+void CheckWritable(const std::string& what, const std::string& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) throw std::runtime_error(what + " " + path + ": is a directory, expected a file");
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device or a FIFO: opening a FIFO and closing it again would end its reader's input.
+    if (::access(path.c_str(), W_OK) != 0) {
+      throw std::runtime_error(what + " " + path + ": cannot write (" + ErrnoText() + ")");
+    }
+    return;
+  }
+  const bool existed = fs::exists(status);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT, 0666);
+  if (fd < 0) throw std::runtime_error(what + " " + path + ": cannot write (" + ErrnoText() + ")");
+  ::close(fd);
+  if (!existed) ::unlink(path.c_str());
+}
+
+void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) throw std::runtime_error(path + ": is a directory, expected a file");
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device or a FIFO: renaming over it would replace it with a regular file.
+    std::ofstream out(path, std::ios::binary);
+    out << contents;
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": write failed");
+    return;
+  }
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const TemporaryFileSlot slot(tmp);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot write file (" + ErrnoText() + ")");
+    out << contents;
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error(path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot move the written file into place");
+  }
+}
+
+void InstallTemporaryFileCleanup() {
+  struct sigaction action {};
+  action.sa_handler = RemoveTemporaryFilesAndDie;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+}
+
+}  // namespace slt

@@ -1,0 +1,42 @@
+// Opening input files and writing output files, the same way in every program.
+//
+// Every input error names the file ("<path>: is a directory"); every output is written whole or
+// not at all (temporary file + rename) unless it is a device or a FIFO, which is written directly
+// (renaming over /dev/null would replace the device with a regular file); and no program
+// overwrites one of its inputs. Temporary files in flight are removed when the program is
+// stopped by SIGINT or SIGTERM (InstallTemporaryFileCleanup).
+#pragma once
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace slt {
+
+// Opens `path` for reading (binary). Throws std::runtime_error "<path>: cannot open file (<why>)"
+// or "<path>: is a directory, expected a file".
+std::ifstream OpenInputFile(const std::string& path);
+
+// True when `a` and `b` name the same file or directory: the same inode when both exist (hard and
+// symbolic links included), the same normalised absolute path otherwise.
+bool SamePath(const std::string& a, const std::string& b);
+
+// Throws std::runtime_error "<what> <output>: is also an input (<input>); refusing to overwrite
+// it" when `output` is one of `inputs` (empty paths are ignored).
+void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
+                             const std::vector<std::string>& inputs);
+
+// Checks that `path` can be written before any work is done: creates it when absent (removed
+// again at once), opens a regular file for appending (nothing written), checks the permission
+// of a device or FIFO. Throws std::runtime_error "<what> <path>: cannot write (<why>)".
+void CheckWritable(const std::string& what, const std::string& path);
+
+// Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and
+// rename, so readers never see a half-written file; an existing device or FIFO directly.
+void WriteTextFileAtomically(const std::string& path, const std::string& contents);
+
+// On SIGINT and SIGTERM, removes the temporary files WriteTextFileAtomically has in flight, then
+// dies of the signal as it would have without the handler. Idempotent.
+void InstallTemporaryFileCleanup();
+
+}  // namespace slt

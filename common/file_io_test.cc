@@ -1,0 +1,119 @@
+#include "common/file_io.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/json_changes.h"
+
+namespace slt {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string TempDir(const std::string& name) {
+  const std::string dir = std::string(::testing::TempDir()) + "slt_file_io_" + name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(OpenInputFile, ErrorsNameTheFile) {
+  const std::string dir = TempDir("open");
+  EXPECT_EQ(ErrorOf([&] { OpenInputFile(dir); }), dir + ": is a directory, expected a file");
+  EXPECT_EQ(ErrorOf([&] { OpenInputFile(dir + "/absent"); }),
+            dir + "/absent: cannot open file (No such file or directory)");
+}
+
+TEST(SamePath, LinksAndSpellings) {
+  const std::string dir = TempDir("same");
+  const std::string a = dir + "/a.txt";
+  std::ofstream(a) << "x";
+  fs::create_symlink(a, dir + "/link.txt");
+  EXPECT_TRUE(SamePath(a, dir + "/./a.txt"));
+  EXPECT_TRUE(SamePath(a, dir + "/link.txt"));
+  EXPECT_TRUE(SamePath(dir + "/new.txt", dir + "/../" + fs::path(dir).filename().string() + "/new.txt"));
+  EXPECT_FALSE(SamePath(a, dir + "/new.txt"));
+  EXPECT_FALSE(SamePath(a, ""));
+  EXPECT_EQ(ErrorOf([&] { RefuseOutputThatIsInput("--output", dir + "/link.txt", {"", a}); }),
+            "--output " + dir + "/link.txt: is also an input (" + a + "); refusing to overwrite it");
+  EXPECT_EQ(ErrorOf([&] { RefuseOutputThatIsInput("--output", dir + "/b.txt", {a}); }), "");
+}
+
+TEST(CheckWritable, RefusesUnwritablePathsAndLeavesNoFile) {
+  const std::string dir = TempDir("writable");
+  EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir + "/new.csv"); }), "");
+  EXPECT_FALSE(fs::exists(dir + "/new.csv"));
+  EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir + "/no/such/dir.csv"); }),
+            "--log " + dir + "/no/such/dir.csv: cannot write (No such file or directory)");
+  EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir); }), "--log " + dir + ": is a directory, expected a file");
+  // A FIFO is not opened (with no reader that would block; with one it would end its input).
+  ASSERT_EQ(::mkfifo((dir + "/pipe").c_str(), 0600), 0);
+  EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir + "/pipe"); }), "");
+}
+
+// Renaming a temporary file over a FIFO (or /dev/null) would replace it with a regular file.
+TEST(WriteTextFileAtomically, WritesFifosDirectly) {
+  const std::string dir = TempDir("fifo");
+  const std::string fifo = dir + "/pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    WriteTextFileAtomically(fifo, "through the pipe\n");
+    ::_exit(0);
+  }
+  {
+    std::ifstream in(fifo);
+    std::ostringstream s;
+    s << in.rdbuf();
+    received = s.str();
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_EQ(received, "through the pipe\n");
+  struct stat info {};
+  ASSERT_EQ(::stat(fifo.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISFIFO(info.st_mode));
+  EXPECT_EQ(ErrorOf([&] { WriteTextFileAtomically(dir, "x"); }), dir + ": is a directory, expected a file");
+}
+
+TEST(WriteTextFileAtomically, WritesDevicesDirectly) {
+  if (::access("/dev/null", W_OK) != 0) GTEST_SKIP() << "/dev/null not writable";
+  WriteTextFileAtomically("/dev/null", "discarded\n");
+  struct stat info {};
+  ASSERT_EQ(::stat("/dev/null", &info), 0);
+  EXPECT_TRUE(S_ISCHR(info.st_mode));
+}
+
+// A writer stopped by SIGTERM while its temporary file exists leaves nothing behind.
+TEST(InstallTemporaryFileCleanup, RemovesTemporaryFilesOnSigterm) {
+  const std::string dir = TempDir("signal");
+  const std::string out = dir + "/out.txt";
+  // The child rewrites a large file until it is killed; the parent waits for its temporary file.
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    InstallTemporaryFileCleanup();
+    const std::string big(16 << 20, 'x');
+    for (;;) WriteTextFileAtomically(out, big);
+  }
+  const std::string tmp = out + ".tmp." + std::to_string(child);
+  for (int i = 0; i < 2000 && !fs::exists(tmp); ++i) ::usleep(1000);
+  ASSERT_TRUE(fs::exists(tmp));
+  ::kill(child, SIGTERM);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_FALSE(fs::exists(tmp));
+}
+
+}  // namespace
+}  // namespace slt
