@@ -2,17 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include "common/json_changes.h"
+
 namespace slt {
 namespace {
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(JsonReader, DefaultsKeptAndValuesRead) {
   const auto j = nlohmann::json::parse(R"({"a": 2.5, "inner": {"n": 3}})");
@@ -29,13 +22,13 @@ TEST(JsonReader, DefaultsKeptAndValuesRead) {
 
 TEST(JsonReader, ErrorsNameFileAndKey) {
   const auto j = nlohmann::json::parse(R"({"a": "text", "inner": {"typo": 1}})");
-  EXPECT_EQ(ErrorOf([&] {
+  EXPECT_EQ(ConfigErrorOf([&] {
               JsonReader r(j, "x.json");
               double a;
               r.Get("a", &a);
             }),
             "x.json: key 'a': expected a number, got string");
-  EXPECT_EQ(ErrorOf([&] {
+  EXPECT_EQ(ConfigErrorOf([&] {
               JsonReader r(j, "x.json");
               double a;
               r.Find("a");
@@ -44,7 +37,7 @@ TEST(JsonReader, ErrorsNameFileAndKey) {
               inner.RejectUnknownKeys();
             }),
             "x.json: key 'inner.typo': unknown key");
-  EXPECT_NE(ErrorOf([] { ReadJsonFile("/nonexistent/file.json"); }).find("/nonexistent/file.json"),
+  EXPECT_NE(ConfigErrorOf([] { ReadJsonFile("/nonexistent/file.json"); }).find("/nonexistent/file.json"),
             std::string::npos);
 }
 

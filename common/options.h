@@ -15,6 +15,7 @@
 //   }
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -130,6 +131,25 @@ class OptionSchema {
     const std::string k = e.key;
     e.read = [k, member](JsonReader& r, S* s) { r.Get(k, &(s->*member)); };
     e.write = [member](const S& s) { return nlohmann::json(s.*member); };
+    entries_.push_back(std::move(e));
+    return std::move(*this);
+  }
+  // A string; one of `allowed` unless that is empty.
+  OptionSchema&& Field(std::string key, std::string S::*member, std::vector<std::string> allowed, std::string doc) && {
+    std::string reason = "must be ", listed;
+    for (size_t i = 0; i < allowed.size(); ++i) {
+      const std::string quoted = "\"" + allowed[i] + "\"";
+      reason += (i == 0 ? "" : i + 1 == allowed.size() ? " or " : ", ") + quoted;
+      listed += (i == 0 ? "" : " | ") + allowed[i];
+    }
+    Entry e = MakeEntry(std::move(key), std::move(doc), allowed.empty() ? "a string" : listed);
+    const std::string k = e.key;
+    e.read = [k, member](JsonReader& r, S* s) { r.Get(k, &(s->*member)); };
+    e.write = [member](const S& s) { return nlohmann::json(s.*member); };
+    e.check = [member, allowed, reason](const S& s) {
+      if (allowed.empty() || std::find(allowed.begin(), allowed.end(), s.*member) != allowed.end()) return std::string();
+      return reason;
+    };
     entries_.push_back(std::move(e));
     return std::move(*this);
   }

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "common/json_reader.h"
+#include "common/json_changes.h"
 
 namespace slt {
 namespace {
@@ -23,11 +24,11 @@ std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "stereo_lines_io_test_" + std::to_string(::getpid()) + "_" + name;
 }
 
-// The message of the ConfigError that f throws, or "" when it throws none.
+// The message of any exception f throws, or "" when it throws none.
 std::string ErrorOf(const std::function<void()>& f) {
   try {
     f();
-  } catch (const ConfigError& e) {
+  } catch (const std::exception& e) {
     return e.what();
   }
   return "";
@@ -221,7 +222,7 @@ class MalformedStereoLines : public ::testing::Test {
   std::string ReadError() {
     const std::string path = TempPath("malformed.json");
     WriteJsonFile(path, document_);
-    const std::string error = ErrorOf([&] { ReadStereoLines(path); });
+    const std::string error = ConfigErrorOf([&] { ReadStereoLines(path); });
     std::remove(path.c_str());
     if (error.empty()) return error;
     EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << "error does not start with the file: " << error;
@@ -320,22 +321,22 @@ TEST_F(MalformedStereoLines, BadFrames) {
 TEST(StereoLinesIo, SyntaxErrorsAndMissingFilesNameTheFile) {
   const std::string path = TempPath("syntax.json");
   WriteTextFileAtomically(path, "{\"format\": \"stereo-lines/1\",");
-  EXPECT_EQ(ErrorOf([&] { ReadStereoLines(path); }).rfind(path + ": invalid JSON", 0), 0u);
+  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }).rfind(path + ": invalid JSON", 0), 0u);
   WriteTextFileAtomically(path, "[]");
-  EXPECT_EQ(ErrorOf([&] { ReadStereoLines(path); }), path + ": top level: expected a JSON object, got array");
+  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": top level: expected a JSON object, got array");
   std::remove(path.c_str());
-  EXPECT_EQ(ErrorOf([&] { ReadStereoLines(path); }), path + ": cannot open file");
+  EXPECT_EQ(ConfigErrorOf([&] { ReadStereoLines(path); }), path + ": cannot open file");
 }
 
 TEST(StereoLinesIo, WriterRejectsWhatTheReaderWould) {
   StereoSequence sequence = RandomSequence(2, 3, 4);
   sequence.frames[1].left[0].segment[2] = std::nan("");
   const std::string path = TempPath("invalid.json");
-  EXPECT_EQ(ErrorOf([&] { WriteStereoLines(path, sequence); }),
+  EXPECT_EQ(ConfigErrorOf([&] { WriteStereoLines(path, sequence); }),
             path + ": key 'frames[1].left[0]': coordinates must be finite");
   sequence.frames[1].left[0].segment[2] = 1.0;
   sequence.frames[1].time = -1.0;
-  EXPECT_EQ(ErrorOf([&] { WriteStereoLines(path, sequence); }),
+  EXPECT_EQ(ConfigErrorOf([&] { WriteStereoLines(path, sequence); }),
             path + ": key 'frames[1].time': -1.0 is before the previous frame's time 0.0");
   EXPECT_FALSE(std::ifstream(path).good()) << "a file was written";
 }
@@ -350,7 +351,7 @@ TEST(StereoLinesIo, RigBlockRoundTripsAndNamesItsPath) {
   EXPECT_EQ(read.right_from_left.translation, rig.right_from_left.translation);
   nlohmann::json block = StereoRigToJson(rig);
   block["height"] = -1;
-  EXPECT_EQ(ErrorOf([&] { StereoRigFromJson(block, "sim.json", "camera.rig"); }),
+  EXPECT_EQ(ConfigErrorOf([&] { StereoRigFromJson(block, "sim.json", "camera.rig"); }),
             "sim.json: key 'camera.rig.height': must be a positive integer");
 }
 

@@ -28,4 +28,22 @@ struct StereoSequence {
   std::vector<StereoFrame> frames;
 };
 
+// The sequence with only the observations whose id `keep(id)` accepts (rig and times kept).
+template <typename Keep>
+StereoSequence FilterLines(const StereoSequence& sequence, Keep keep) {
+  StereoSequence out;
+  out.rig = sequence.rig;
+  for (const StereoFrame& frame : sequence.frames) {
+    StereoFrame& f = out.frames.emplace_back();
+    f.time = frame.time;
+    for (const LineObservation& o : frame.left) {
+      if (keep(o.id)) f.left.push_back(o);
+    }
+    for (const LineObservation& o : frame.right) {
+      if (keep(o.id)) f.right.push_back(o);
+    }
+  }
+  return out;
+}
+
 }  // namespace slt

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "common/json_reader.h"
+#include "geometry/se3.h"
 
 namespace slt {
 namespace {

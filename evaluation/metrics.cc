@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/json_reader.h"
+#include "geometry/se3.h"
 
 namespace slt {
 namespace {
@@ -130,29 +131,6 @@ SimilarityTransform UmeyamaAlignment(const std::vector<Eigen::Vector3d>& source,
   transform.scale = with_scale ? d.dot(s) / source_variance : 1.0;
   transform.translation = target_mean - transform.scale * (transform.rotation * source_mean);
   return transform;
-}
-
-ErrorStatistics ComputeStatistics(std::vector<double> values) {
-  if (values.empty()) throw std::invalid_argument("statistics of an empty set of errors");
-  ErrorStatistics s;
-  s.count = values.size();
-  const double n = static_cast<double>(values.size());
-  double sum = 0.0, sum_squares = 0.0;
-  for (double v : values) {
-    sum += v;
-    sum_squares += v * v;
-  }
-  s.mean = sum / n;
-  s.rmse = std::sqrt(sum_squares / n);
-  double squared_deviations = 0.0;
-  for (double v : values) squared_deviations += (v - s.mean) * (v - s.mean);
-  s.std = std::sqrt(squared_deviations / n);
-  std::sort(values.begin(), values.end());
-  s.min = values.front();
-  s.max = values.back();
-  const size_t half = values.size() / 2;
-  s.median = values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
-  return s;
 }
 
 TrajectoryErrors EvaluateTrajectory(const Trajectory& gt, const Trajectory& est, const EvaluationOptions& options) {

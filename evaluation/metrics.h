@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "dataset/trajectory.h"
+#include "evaluation/statistics.h"
 #include "geometry/rigid3.h"
 
 namespace slt {
@@ -78,18 +79,6 @@ struct SimilarityTransform {
 SimilarityTransform UmeyamaAlignment(const std::vector<Eigen::Vector3d>& source,
                                      const std::vector<Eigen::Vector3d>& target, bool with_scale);
 
-// Summary of a set of errors, as evo prints it. std is the population standard deviation.
-struct ErrorStatistics {
-  size_t count = 0;
-  double rmse = 0.0;
-  double mean = 0.0;
-  double median = 0.0;  // mean of the two middle values for an even count
-  double std = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-};
-// Throws std::invalid_argument on an empty set.
-ErrorStatistics ComputeStatistics(std::vector<double> values);
 
 // The error of one estimate pose against its ground-truth pose.
 struct FrameError {

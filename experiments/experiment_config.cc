@@ -1,9 +1,11 @@
 #include "experiments/experiment_config.h"
 
+#include <algorithm>
 #include <charconv>
 #include <set>
 
 #include "common/json_reader.h"
+#include "common/options.h"
 #include "common/random.h"
 #include "experiments/trial_result.h"
 #include "methods/pose_tracker.h"
@@ -11,11 +13,21 @@
 namespace slt {
 namespace {
 
-const std::set<std::string> kPlotKinds = {"sweep", "grid", "curves", "trajectory"};
-
 std::string Indexed(const std::string& key, size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
 bool IsScalar(const nlohmann::json& v) { return v.is_number() || v.is_string() || v.is_boolean(); }
+
+// An error of a part read on its own (tracker options, a simulation), moved under `key` of this
+// file: "<where>: key '<key>.<its key>': ..." (with `suffix` appended).
+[[noreturn]] void RethrowUnder(const ConfigError& e, const std::string& where, const std::string& key,
+                               const std::string& suffix = "") {
+  const std::string message = e.what();
+  const std::string prefix = where + ": key '";
+  if (message.compare(0, prefix.size(), prefix) == 0) {
+    throw ConfigError(prefix + key + "." + message.substr(prefix.size()) + suffix);
+  }
+  throw ConfigError(prefix + key + "': " + message + suffix);
+}
 
 MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const std::string& key) {
   MethodSpec method;
@@ -44,13 +56,7 @@ MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const s
   try {
     CreateTracker(method.name, method.options, where);
   } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    const std::string prefix = where + ": key '";
-    const std::string options_key = j.is_object() ? key + ".options" : key;
-    if (message.compare(0, prefix.size(), prefix) == 0) {
-      throw ConfigError(prefix + options_key + "." + message.substr(prefix.size()));
-    }
-    throw ConfigError(where + ": key '" + options_key + "': " + message);
+    RethrowUnder(e, where, j.is_object() ? key + ".options" : key);
   }
   return method;
 }
@@ -98,20 +104,30 @@ SweepAxis ReadAxis(const nlohmann::json& j, const std::string& where, const std:
   return axis;
 }
 
+const OptionSchema<PlotSpec>& PlotSchema() {
+  using P = PlotSpec;
+  static const OptionSchema<P> schema =
+      OptionSchema<P>()
+          .Field("kind", &P::kind, {"sweep", "grid", "curves", "trajectory"}, "what is drawn")
+          .Field("file", &P::file, {}, "PNG file name in the output directory")
+          .Field("title", &P::title, {}, "figure title (default: the experiment's)")
+          .Field("yscale", &P::yscale, {"linear", "log"}, "error axis")
+          .Field("band", &P::band, "shade the 95 % interval over trials")
+          .Field("lines", &P::lines, {"methods", "sweep"}, "grid: one line per method or per second value")
+          .Field("trial", &P::trial, AtLeast(0), "trajectory: the trial drawn")
+          .Check("file", [](const P& p) {
+            return p.file.size() < 5 || p.file.substr(p.file.size() - 4) != ".png" || p.file.find('/') != std::string::npos
+                       ? "expected a file name ending in .png (no directory)"
+                       : "";
+          });
+  return schema;
+}
+
 PlotSpec ReadPlot(const nlohmann::json& j, const std::string& where, const std::string& key) {
   JsonReader reader(j, where, key);
   PlotSpec plot;
-  reader.Get("kind", &plot.kind).Get("file", &plot.file).Get("title", &plot.title).Get("yscale", &plot.yscale);
-  reader.Get("band", &plot.band).Get("lines", &plot.lines).Get("trial", &plot.trial);
+  PlotSchema().Read(reader, &plot);
   reader.RejectUnknownKeys();
-  if (!kPlotKinds.count(plot.kind)) reader.Fail("kind", "must be \"sweep\", \"grid\", \"curves\" or \"trajectory\"");
-  if (plot.file.size() < 5 || plot.file.substr(plot.file.size() - 4) != ".png" ||
-      plot.file.find('/') != std::string::npos) {
-    reader.Fail("file", "expected a file name ending in .png (no directory)");
-  }
-  if (plot.yscale != "linear" && plot.yscale != "log") reader.Fail("yscale", "must be \"linear\" or \"log\"");
-  if (plot.lines != "methods" && plot.lines != "sweep") reader.Fail("lines", "must be \"methods\" or \"sweep\"");
-  if (plot.trial < 0) reader.Fail("trial", "must be >= 0");
   return plot;
 }
 
@@ -162,14 +178,32 @@ SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& w
     config.Check(where);
     return config;
   } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    const std::string prefix = where + ": key '";
-    const std::string suffix = at.empty() ? "" : " (at sweep point " + at + ")";
-    if (message.compare(0, prefix.size(), prefix) == 0) {
-      throw ConfigError(prefix + "simulation." + message.substr(prefix.size()) + suffix);
-    }
-    throw ConfigError(where + ": key 'simulation': " + message + suffix);
+    RethrowUnder(e, where, "simulation", at.empty() ? "" : " (at sweep point " + at + ")");
   }
+}
+
+OrderingCheck ReadOrdering(const ExperimentConfig& c, const nlohmann::json& j, const std::string& where,
+                           const std::string& key) {
+  JsonReader reader(j, where, key);
+  OrderingCheck o;
+  reader.Get("better", &o.better).Get("worse", &o.worse);
+  if (const nlohmann::json* at = reader.Find("at")) o.at = *at;
+  reader.RejectUnknownKeys();
+  for (const char* side : {"better", "worse"}) {
+    const std::string& id = std::string(side) == "better" ? o.better : o.worse;
+    bool found = false;
+    for (const MethodSpec& m : c.methods) found = found || m.Id() == id;
+    if (!found) reader.Fail(side, "'" + id + "' is not the id of a method of this config");
+  }
+  if (!o.at.is_object()) reader.Fail("at", "expected an object {\"<swept parameter>\": value}");
+  for (const auto& [parameter, value] : o.at.items()) {
+    bool found = false;
+    for (const SweepAxis& a : c.sweep) {
+      found = found || (a.parameter == parameter && std::find(a.values.begin(), a.values.end(), value) != a.values.end());
+    }
+    if (!found) reader.Fail("at", parameter + " = " + value.dump() + " is not a value of a swept parameter");
+  }
+  return o;
 }
 
 nlohmann::json ToJson(const MethodSpec& m) {
@@ -180,10 +214,9 @@ nlohmann::json ToJson(const SweepAxis& a) {
   return {{"parameter", a.parameter}, {"values", a.values}, {"label", a.label}};
 }
 
-nlohmann::json ToJson(const PlotSpec& p) {
-  return {{"kind", p.kind}, {"file", p.file},   {"title", p.title}, {"yscale", p.yscale},
-          {"band", p.band}, {"lines", p.lines}, {"trial", p.trial}};
-}
+nlohmann::json ToJson(const OrderingCheck& o) { return {{"better", o.better}, {"worse", o.worse}, {"at", o.at}}; }
+
+nlohmann::json ToJson(const PlotSpec& p) { return PlotSchema().ToJson(p); }
 
 }  // namespace
 
@@ -262,11 +295,9 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
       if (c.plots[k].file == c.plots[i].file) ThrowOptionError(where, Indexed("plots", i), "file", "used twice");
     }
   }
-  reader.Get("expect_best", &c.expect_best);
-  if (!c.expect_best.empty()) {
-    bool found = false;
-    for (const MethodSpec& m : c.methods) found = found || m.Id() == c.expect_best;
-    if (!found) reader.Fail("expect_best", "'" + c.expect_best + "' is not the id of a method of this config");
+  if (const nlohmann::json* pairs = reader.Find("expect_better")) {
+    if (!pairs->is_array()) reader.Fail("expect_better", "expected an array of {\"better\", \"worse\", \"at\"}");
+    for (size_t i = 0; i < pairs->size(); ++i) c.expect_better.push_back(ReadOrdering(c, (*pairs)[i], where, Indexed("expect_better", i)));
   }
   reader.Find("resolved");  // output only (ResolvedConfigJson): ignored on input
   reader.RejectUnknownKeys();
@@ -304,10 +335,13 @@ nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
   j["trials"] = c.trials;
   j["seed"] = c.seed;
   j["simulation"] = c.simulation;
-  j["sweep"] = nlohmann::json::array();
-  for (const SweepAxis& a : c.sweep) j["sweep"].push_back(ToJson(a));
-  j["methods"] = nlohmann::json::array();
-  for (const MethodSpec& m : c.methods) j["methods"].push_back(ToJson(m));
+  const auto array_of = [](const auto& items) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const auto& item : items) array.push_back(ToJson(item));
+    return array;
+  };
+  j["sweep"] = array_of(c.sweep);
+  j["methods"] = array_of(c.methods);
   if (c.metrics_frame < 0) {
     j["metrics_frame"] = "last";
   } else {
@@ -316,9 +350,8 @@ nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
   j["per_frame_curves"] = c.per_frame_curves;
   j["save_trajectories"] = c.save_trajectories;
   j["table_metrics"] = c.table_metrics;
-  j["plots"] = nlohmann::json::array();
-  for (const PlotSpec& p : c.plots) j["plots"].push_back(ToJson(p));
-  j["expect_best"] = c.expect_best;
+  j["plots"] = array_of(c.plots);
+  j["expect_better"] = array_of(c.expect_better);
   return j;
 }
 

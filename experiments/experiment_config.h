@@ -44,6 +44,16 @@ struct PlotSpec {
   int trial = 0;               // trajectory: the trial drawn (must be saved)
 };
 
+// An expected ordering: `better` has a lower mean rotation and a lower mean translation error
+// than `worse` at the metrics frame, at every sweep point whose values match `at` (sweep
+// parameter -> value; empty = every point). Checked by experiments_regression_test; a method
+// not named in any pair (a new baseline) can rank anywhere.
+struct OrderingCheck {
+  std::string better;
+  std::string worse;
+  nlohmann::json at = nlohmann::json::object();
+};
+
 struct ExperimentConfig {
   std::string name = "experiment";  // output directory name: results/<name>
   std::string title;                // defaults to name
@@ -62,10 +72,8 @@ struct ExperimentConfig {
   // Summary columns of summary.md / summary.tex (names from SummaryMetricNames()).
   std::vector<std::string> table_metrics = {"rot_err_deg", "trans_err_m", "time_us"};
   std::vector<PlotSpec> plots;  // defaults follow the sweep and the curves/trajectory flags
-  // The method expected to have the lowest mean rotation and translation error at the metrics
-  // frame at every sweep point (the paper's ordering); checked by experiments_regression_test.
-  // Empty = no expectation.
-  std::string expect_best;
+  // The paper's orderings, as pairs; summary.md then lists the full ordering at every point.
+  std::vector<OrderingCheck> expect_better;
 };
 
 // Reads a config. `where` names the file in errors. "methods": "all" (or absent) expands to

@@ -77,7 +77,11 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(ErrorOf({{"plots", {{{"kind", "pie"}, {"file", "a.png"}}}}}).find("key 'plots[0].kind'"), std::string::npos);
   EXPECT_NE(ErrorOf({{"table_metrics", {"rot_err_deg", "speed"}}}).find("key 'table_metrics[1]': unknown metric 'speed'"),
             std::string::npos);
-  EXPECT_NE(ErrorOf({{"expect_best", "nobody"}}).find("key 'expect_best'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "nobody"}, {"worse", "yu_point_ekf"}}}}}).find("key 'expect_better[0].better'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "yu_point_ekf"}, {"worse", "trifocal_line_ekf"}, {"at", {{"frames", 3}}}}}}})
+                .find("key 'expect_better[0].at'"),
+            std::string::npos);
   EXPECT_NE(ErrorOf({{"name", "a/b"}}).find("key 'name'"), std::string::npos);
 }
 

@@ -24,53 +24,56 @@ void MakeDirectory(const std::string& dir) {
   if (error) throw std::runtime_error(dir + ": cannot create directory (" + error.message() + ")");
 }
 
-nlohmann::json BaseRunInfo(const DriverOptions& options) {
-  nlohmann::json info = VersionAndMachineJson(SourceDir());
-  info["program"] = "run_experiment";
-  info["command_line"] = options.command_line;
-  info["config_file"] = options.config_file;
-  info["started_utc"] = UtcNow();
-  return info;
+// Writes raw/, config.resolved.json, the summaries (a whole run) and run.json last, with
+// `info` (what the run or the merge adds) and the version, machine and command line.
+void WriteOutputs(const DriverOptions& options, const ExperimentConfig& config, const std::vector<TrialResult>& trials,
+                  const nlohmann::json& resolved, const nlohmann::json& info, std::chrono::steady_clock::time_point start) {
+  MakeDirectory(options.out_dir);
+  WriteRawResults(options.out_dir, config, trials);
+  WriteJsonFile(Join(options.out_dir, "config.resolved.json"), resolved);
+  if (options.run.shard.IsWhole()) WriteSummaries(options.out_dir, config, trials);
+  nlohmann::json run = VersionAndMachineJson(SourceDir());
+  run["program"] = "run_experiment";
+  run["command_line"] = options.command_line;
+  run["config_file"] = options.config_file;
+  run.update(info);
+  run["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  WriteJsonFile(Join(options.out_dir, "run.json"), run);
 }
 
 }  // namespace
 
 ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  nlohmann::json info = BaseRunInfo(options);
+  const std::string started = UtcNow();
   MakeDirectory(options.out_dir);
   const nlohmann::json resolved = ResolvedConfigJson(config);  // fails early on bad tracker options
   ExperimentRun run = RunExperiment(config, options.run);
-  WriteRawResults(options.out_dir, config, run.trials);
-  WriteJsonFile(Join(options.out_dir, "config.resolved.json"), resolved);
-  if (options.run.shard.IsWhole()) WriteSummaries(options.out_dir, config, run.trials);
-  info["threads"] = run.threads;
-  info["jobs"] = {{"total", run.jobs_total}, {"run", run.trials.size()}};
-  info["shard"] = options.run.shard.IsWhole()
-                      ? nlohmann::json(nullptr)
-                      : nlohmann::json({{"index", options.run.shard.index}, {"count", options.run.shard.count}});
-  info["experiment_time_s"] = run.wall_time_s;
-  info["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteJsonFile(Join(options.out_dir, "run.json"), info);
+  const Shard& shard = options.run.shard;
+  WriteOutputs(options, config, run.trials, resolved,
+               {{"started_utc", started},
+                {"threads", run.threads},
+                {"jobs", {{"total", run.jobs_total}, {"run", run.trials.size()}}},
+                {"shard", shard.IsWhole() ? nlohmann::json(nullptr)
+                                          : nlohmann::json({{"index", shard.index}, {"count", shard.count}})},
+                {"experiment_time_s", run.wall_time_s}},
+               start);
   return run;
 }
 
 MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const DriverOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  nlohmann::json info = BaseRunInfo(options);
+  const std::string started = UtcNow();
   MergedRun merged = MergeShardOutputs(shard_dirs);
-  MakeDirectory(options.out_dir);
-  WriteRawResults(options.out_dir, merged.config, merged.trials);
-  WriteJsonFile(Join(options.out_dir, "config.resolved.json"), ResolvedConfigJson(merged.config));
-  WriteSummaries(options.out_dir, merged.config, merged.trials);
-  double experiment_time = 0.0;
+  double experiment_time = 0.0;  // the sum over the shards
   for (const nlohmann::json& shard : merged.shards) experiment_time += shard.value("experiment_time_s", 0.0);
-  info["jobs"] = {{"total", merged.trials.size()}, {"merged", merged.trials.size()}};
-  info["shard"] = nullptr;
-  info["merged_from"] = merged.shards;
-  info["experiment_time_s"] = experiment_time;  // sum over the shards
-  info["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteJsonFile(Join(options.out_dir, "run.json"), info);
+  WriteOutputs(options, merged.config, merged.trials, ResolvedConfigJson(merged.config),
+               {{"started_utc", started},
+                {"jobs", {{"total", merged.trials.size()}, {"merged", merged.trials.size()}}},
+                {"shard", nullptr},
+                {"merged_from", merged.shards},
+                {"experiment_time_s", experiment_time}},
+               start);
   return merged;
 }
 

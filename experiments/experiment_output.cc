@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "common/json_reader.h"
-#include "experiments/csv.h"
+#include "common/csv.h"
 #include "experiments/experiment_runner.h"
 
 namespace slt {
@@ -35,9 +35,9 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     {"drift_pct", "Gap / path length (%)"},
     {"time_mean_us", "Time per frame (us)"},
     {"time_median_us", "Median time per frame (us)"},
-    {"features_used", "Lines used per frame"},
-    {"features_available", "Lines available per frame"},
-    {"rebootstraps", "Re-bootstraps"},
+    {"features_used", "Features used per frame"},
+    {"features_available", "Features available per frame"},
+    {"new_references", "New reference pairs"},
     {"lost_frames", "Lost frames"},
 };
 
@@ -45,10 +45,20 @@ const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
 
 std::string Join(const std::string& dir, const std::string& file) { return (fs::path(dir) / file).string(); }
 
-std::vector<std::string> PointValues(const std::vector<SweepPoint>& points, size_t p) {
-  std::vector<std::string> values;
-  for (const nlohmann::json& v : points.at(p).values) values.push_back(FormatValue(v));
-  return values;
+// The columns that name a row: method id, point index, the point's sweep values.
+std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t method,
+                                   size_t point) {
+  std::vector<std::string> row = {config.methods.at(method).Id(), std::to_string(point)};
+  for (const nlohmann::json& v : points.at(point).values) row.push_back(FormatValue(v));
+  return row;
+}
+
+// Their header, then `columns`.
+std::vector<std::string> Header(const ExperimentConfig& config, std::initializer_list<const char*> columns) {
+  std::vector<std::string> header = {"method", "point"};
+  for (const SweepAxis& a : config.sweep) header.push_back(a.parameter);
+  header.insert(header.end(), columns.begin(), columns.end());
+  return header;
 }
 
 // Method index from its id; throws naming the file and line.
@@ -70,11 +80,10 @@ size_t PointOfRow(const CsvTable& table, const std::vector<std::string>& row, co
                   const std::vector<SweepPoint>& points, const std::string& where) {
   const size_t p = ParseIndex(row[table.Column("point")], where);
   if (p >= points.size()) throw std::runtime_error(where + ": sweep point " + std::to_string(p) + " is not in the config");
-  const std::vector<std::string> values = PointValues(points, p);
-  const std::vector<std::string> columns = SweepColumns(config);
-  for (size_t a = 0; a < columns.size(); ++a) {
-    if (row[table.Column(columns[a])] != values[a]) {
-      throw std::runtime_error(where + ": " + columns[a] + " = '" + row[table.Column(columns[a])] +
+  for (size_t a = 0; a < config.sweep.size(); ++a) {
+    const std::string& column = config.sweep[a].parameter;
+    if (row[table.Column(column)] != FormatValue(points[p].values[a])) {
+      throw std::runtime_error(where + ": " + column + " = '" + row[table.Column(column)] +
                                "' does not match sweep point " + std::to_string(p) + " of the config");
     }
   }
@@ -92,32 +101,6 @@ std::string Sig(double v) {
   return buffer;
 }
 
-std::string TexEscape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '_': case '%': case '&': case '#': case '$': case '{': case '}':
-        out += '\\';
-        out += c;
-        break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      case '\\': out += "\\textbackslash{}"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-std::string MdEscape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '|') out += '\\';
-    out += c;
-  }
-  return out;
-}
-
 std::vector<int> TableMetrics(const ExperimentConfig& config) {
   std::vector<int> metrics;
   for (const std::string& name : config.table_metrics) metrics.push_back(TrialMetricFromName(name));
@@ -129,9 +112,21 @@ std::string MetricsFrameText(const ExperimentConfig& config) {
                                   : "frame " + std::to_string(config.metrics_frame);
 }
 
-std::string TrialsText(const SummaryRow& row) {
-  return row.finite_trials == row.trials ? std::to_string(row.trials)
-                                         : std::to_string(row.finite_trials) + "/" + std::to_string(row.trials);
+// The cells of a summary table row: method, sweep values, trials, then mean, median and 95 %
+// interval per table metric; text cells escaped by `escape` (Markdown or LaTeX).
+std::string TableRow(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const SummaryRow& r,
+                     std::string (*escape)(const std::string&), const std::string& separator) {
+  std::string row = escape(config.methods.at(r.method).Id());
+  for (const nlohmann::json& v : points[r.point].values) row += separator + escape(FormatValue(v));
+  row += separator + (r.finite_trials == r.trials ? std::to_string(r.trials)
+                                                  : std::to_string(r.finite_trials) + "/" + std::to_string(r.trials));
+  for (int m : TableMetrics(config)) {
+    const Summary& s = r.metrics[m];
+    for (const std::string& cell : {Sig(s.mean), Sig(s.median), "[" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "]"}) {
+      row += separator + cell;
+    }
+  }
+  return row;
 }
 
 }  // namespace
@@ -161,151 +156,112 @@ std::vector<std::string> SweepColumns(const ExperimentConfig& config) {
 
 void WriteRawResults(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  const std::vector<std::string> sweep_columns = SweepColumns(config);
   fs::create_directories(Join(dir, "raw"));
 
-  std::vector<std::string> header = {"method", "point"};
-  header.insert(header.end(), sweep_columns.begin(), sweep_columns.end());
-  for (const char* c : {"trial", "seed", "n_frames", "metrics_frame"}) header.push_back(c);
+  std::vector<std::string> header = Header(config, {"trial", "seed", "n_frames", "metrics_frame"});
   for (int m = 0; m < kNumTrialMetrics; ++m) header.push_back(TrialMetricName(m));
   header.push_back("finite");
   std::string csv = CsvLine(header);
+  std::string curves = CsvLine(Header(config, {"trial", "frame", "time_s", "rot_err_deg", "trans_err_m"}));
+  std::string index = CsvLine(Header(config, {"trial", "estimate", "ground_truth"}));
   bool any_curve = false, any_trajectory = false;
+  const std::string tdir = Join(dir, "raw/trajectories");
+  fs::remove_all(tdir);  // this program's own folder: no stale files from an earlier run
   for (const TrialResult& t : trials) {
-    std::vector<std::string> row = {config.methods.at(t.method_index).Id(), std::to_string(t.point_index)};
-    for (const std::string& v : PointValues(points, t.point_index)) row.push_back(v);
-    row.push_back(std::to_string(t.trial));
+    std::vector<std::string> prefix = RowPrefix(config, points, t.method_index, t.point_index);
+    prefix.push_back(std::to_string(t.trial));
+    std::vector<std::string> row = prefix;
     row.push_back(std::to_string(t.seed));
     row.push_back(std::to_string(t.frames));
     row.push_back(std::to_string(t.metrics_frame));
     for (double v : t.metrics) row.push_back(FormatDouble(v));
     row.push_back(t.finite ? "true" : "false");
     csv += CsvLine(row);
-    any_curve = any_curve || !t.curve.empty();
-    any_trajectory = any_trajectory || !t.estimate.empty();
+    for (const FrameError& e : t.curve) {
+      std::vector<std::string> r = prefix;
+      for (const std::string& v : {std::to_string(e.frame), FormatDouble(e.time_s), FormatDouble(e.rot_err_deg),
+                                   FormatDouble(e.trans_err_m)}) {
+        r.push_back(v);
+      }
+      curves += CsvLine(r);
+      any_curve = true;
+    }
+    if (t.estimate.empty()) continue;
+    if (!any_trajectory) fs::create_directories(tdir);
+    any_trajectory = true;
+    const std::string tag = "p" + std::to_string(t.point_index) + "_t" + std::to_string(t.trial);
+    const std::string est_file = "m" + std::to_string(t.method_index) + "_" + tag + ".tum";
+    const std::string gt_file = "gt_" + tag + ".tum";
+    WriteTumTrajectory(Join(tdir, est_file), t.estimate);
+    WriteTumTrajectory(Join(tdir, gt_file), t.ground_truth);
+    prefix.push_back(est_file);
+    prefix.push_back(gt_file);
+    index += CsvLine(prefix);
   }
   WriteTextFileAtomically(Join(dir, "raw/trials.csv"), csv);
-
-  if (any_curve) {
-    std::vector<std::string> h = {"method", "point"};
-    h.insert(h.end(), sweep_columns.begin(), sweep_columns.end());
-    for (const char* c : {"trial", "frame", "time_s", "rot_err_deg", "trans_err_m"}) h.push_back(c);
-    std::string curves = CsvLine(h);
-    for (const TrialResult& t : trials) {
-      std::vector<std::string> prefix = {config.methods.at(t.method_index).Id(), std::to_string(t.point_index)};
-      for (const std::string& v : PointValues(points, t.point_index)) prefix.push_back(v);
-      prefix.push_back(std::to_string(t.trial));
-      for (const FrameError& e : t.curve) {
-        std::vector<std::string> row = prefix;
-        row.push_back(std::to_string(e.frame));
-        row.push_back(FormatDouble(e.time_s));
-        row.push_back(FormatDouble(e.rot_err_deg));
-        row.push_back(FormatDouble(e.trans_err_m));
-        curves += CsvLine(row);
-      }
-    }
-    WriteTextFileAtomically(Join(dir, "raw/curves.csv"), curves);
-  }
-
-  const std::string tdir = Join(dir, "raw/trajectories");
-  fs::remove_all(tdir);  // this program's own folder: no stale files from an earlier run
-  if (any_trajectory) {
-    fs::create_directories(tdir);
-    std::vector<std::string> h = {"method", "point"};
-    h.insert(h.end(), sweep_columns.begin(), sweep_columns.end());
-    for (const char* c : {"trial", "estimate", "ground_truth"}) h.push_back(c);
-    std::string index = CsvLine(h);
-    for (const TrialResult& t : trials) {
-      if (t.estimate.empty()) continue;
-      const std::string tag = "p" + std::to_string(t.point_index) + "_t" + std::to_string(t.trial);
-      const std::string est_file = "m" + std::to_string(t.method_index) + "_" + tag + ".tum";
-      const std::string gt_file = "gt_" + tag + ".tum";
-      WriteTumTrajectory(Join(tdir, est_file), t.estimate);
-      WriteTumTrajectory(Join(tdir, gt_file), t.ground_truth);
-      std::vector<std::string> row = {config.methods.at(t.method_index).Id(), std::to_string(t.point_index)};
-      for (const std::string& v : PointValues(points, t.point_index)) row.push_back(v);
-      row.push_back(std::to_string(t.trial));
-      row.push_back(est_file);
-      row.push_back(gt_file);
-      index += CsvLine(row);
-    }
-    WriteTextFileAtomically(Join(tdir, "index.csv"), index);
-  }
+  if (any_curve) WriteTextFileAtomically(Join(dir, "raw/curves.csv"), curves);
+  if (any_trajectory) WriteTextFileAtomically(Join(tdir, "index.csv"), index);
 }
 
 std::vector<TrialResult> ReadRawResults(const std::string& dir, const ExperimentConfig& config) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  const CsvTable table = ReadCsvFile(Join(dir, "raw/trials.csv"));
   std::vector<TrialResult> trials;
   std::map<std::tuple<size_t, size_t, int>, size_t> by_key;
-  for (size_t r = 0; r < table.rows.size(); ++r) {
-    const std::vector<std::string>& row = table.rows[r];
-    const std::string where = table.where + ":" + std::to_string(r + 2);
-    try {
-      TrialResult t;
-      t.method_index = MethodIndex(config, row[table.Column("method")], where);
-      t.point_index = PointOfRow(table, row, config, points, where);
-      t.trial = static_cast<int>(ParseIndex(row[table.Column("trial")], where));
-      t.seed = std::stoull(row[table.Column("seed")]);
-      t.frames = static_cast<int>(ParseIndex(row[table.Column("n_frames")], where));
-      t.metrics_frame = static_cast<int>(ParseIndex(row[table.Column("metrics_frame")], where));
-      for (int m = 0; m < kNumTrialMetrics; ++m) t.metrics[m] = ParseDouble(row[table.Column(TrialMetricName(m))]);
-      const std::string finite = row[table.Column("finite")];
-      if (finite != "true" && finite != "false") throw std::runtime_error("finite must be true or false");
-      t.finite = finite == "true";
-      if (t.trial >= config.trials) throw std::runtime_error("trial " + std::to_string(t.trial) + " is not in the config");
-      const auto key = std::make_tuple(t.method_index, t.point_index, t.trial);
-      if (by_key.count(key)) throw std::runtime_error("the same (method, point, trial) appears twice");
-      by_key[key] = trials.size();
-      trials.push_back(std::move(t));
-    } catch (const std::runtime_error& e) {
-      const std::string what = e.what();
-      throw std::runtime_error(what.rfind(where, 0) == 0 ? what : where + ": " + what);
-    } catch (const std::exception& e) {
-      throw std::runtime_error(where + ": " + e.what());
-    }
-  }
-
-  const std::string curves_path = Join(dir, "raw/curves.csv");
-  if (fs::exists(curves_path)) {
-    const CsvTable curves = ReadCsvFile(curves_path);
-    for (size_t r = 0; r < curves.rows.size(); ++r) {
-      const std::vector<std::string>& row = curves.rows[r];
-      const std::string where = curves.where + ":" + std::to_string(r + 2);
+  // Calls read(row, trial) for every row of `file` (if it exists), with errors naming the file
+  // and line; `trial` is the parsed (method, point, trial) of the row, and for the files other
+  // than trials.csv, the trial it belongs to.
+  auto for_each_row = [&](const std::string& file, bool first, const auto& read) {
+    const std::string path = Join(dir, file);
+    if (!first && !fs::exists(path)) return;
+    const CsvTable table = ReadCsvFile(path);
+    for (size_t r = 0; r < table.rows.size(); ++r) {
+      const std::vector<std::string>& row = table.rows[r];
+      const std::string where = table.where + ":" + std::to_string(r + 2);
       try {
-        const size_t m = MethodIndex(config, row[curves.Column("method")], where);
-        const size_t p = PointOfRow(curves, row, config, points, where);
-        const int trial = static_cast<int>(ParseIndex(row[curves.Column("trial")], where));
-        const auto it = by_key.find(std::make_tuple(m, p, trial));
-        if (it == by_key.end()) throw std::runtime_error("no row of raw/trials.csv for this curve");
-        FrameError e;
-        e.frame = static_cast<int>(ParseIndex(row[curves.Column("frame")], where));
-        e.time_s = ParseDouble(row[curves.Column("time_s")]);
-        e.rot_err_deg = ParseDouble(row[curves.Column("rot_err_deg")]);
-        e.trans_err_m = ParseDouble(row[curves.Column("trans_err_m")]);
-        trials[it->second].curve.push_back(e);
+        TrialResult key;
+        key.method_index = MethodIndex(config, row[table.Column("method")], where);
+        key.point_index = PointOfRow(table, row, config, points, where);
+        key.trial = static_cast<int>(ParseIndex(row[table.Column("trial")], where));
+        auto column = [&](const char* name) -> const std::string& { return row[table.Column(name)]; };
+        if (first) {
+          read(column, key, where);
+          continue;
+        }
+        const auto it = by_key.find(std::make_tuple(key.method_index, key.point_index, key.trial));
+        if (it == by_key.end()) throw std::runtime_error("no row of raw/trials.csv for this row");
+        read(column, trials[it->second], where);
       } catch (const std::exception& e) {
         const std::string what = e.what();
         throw std::runtime_error(what.rfind(where, 0) == 0 ? what : where + ": " + what);
       }
     }
-  }
-
-  const std::string index_path = Join(dir, "raw/trajectories/index.csv");
-  if (fs::exists(index_path)) {
-    const CsvTable index = ReadCsvFile(index_path);
-    for (size_t r = 0; r < index.rows.size(); ++r) {
-      const std::vector<std::string>& row = index.rows[r];
-      const std::string where = index.where + ":" + std::to_string(r + 2);
-      const size_t m = MethodIndex(config, row[index.Column("method")], where);
-      const size_t p = PointOfRow(index, row, config, points, where);
-      const int trial = static_cast<int>(ParseIndex(row[index.Column("trial")], where));
-      const auto it = by_key.find(std::make_tuple(m, p, trial));
-      if (it == by_key.end()) throw std::runtime_error(where + ": no row of raw/trials.csv for this trajectory");
-      trials[it->second].estimate = ReadTumTrajectory(Join(dir, "raw/trajectories/" + row[index.Column("estimate")]));
-      trials[it->second].ground_truth = ReadTumTrajectory(Join(dir, "raw/trajectories/" + row[index.Column("ground_truth")]));
-    }
-  }
+  };
+  for_each_row("raw/trials.csv", true, [&](const auto& column, TrialResult t, const std::string& where) {
+    t.seed = std::stoull(column("seed"));
+    t.frames = static_cast<int>(ParseIndex(column("n_frames"), where));
+    t.metrics_frame = static_cast<int>(ParseIndex(column("metrics_frame"), where));
+    for (int m = 0; m < kNumTrialMetrics; ++m) t.metrics[m] = ParseDouble(column(TrialMetricName(m)));
+    const std::string& finite = column("finite");
+    if (finite != "true" && finite != "false") throw std::runtime_error("finite must be true or false");
+    t.finite = finite == "true";
+    if (t.trial >= config.trials) throw std::runtime_error("trial " + std::to_string(t.trial) + " is not in the config");
+    const auto key = std::make_tuple(t.method_index, t.point_index, t.trial);
+    if (by_key.count(key)) throw std::runtime_error("the same (method, point, trial) appears twice");
+    by_key[key] = trials.size();
+    trials.push_back(std::move(t));
+  });
+  for_each_row("raw/curves.csv", false, [&](const auto& column, TrialResult& t, const std::string& where) {
+    FrameError e;
+    e.frame = static_cast<int>(ParseIndex(column("frame"), where));
+    e.time_s = ParseDouble(column("time_s"));
+    e.rot_err_deg = ParseDouble(column("rot_err_deg"));
+    e.trans_err_m = ParseDouble(column("trans_err_m"));
+    t.curve.push_back(e);
+  });
+  for_each_row("raw/trajectories/index.csv", false, [&](const auto& column, TrialResult& t, const std::string&) {
+    t.estimate = ReadTumTrajectory(Join(dir, "raw/trajectories/" + column("estimate")));
+    t.ground_truth = ReadTumTrajectory(Join(dir, "raw/trajectories/" + column("ground_truth")));
+  });
   return trials;
 }
 
@@ -333,17 +289,13 @@ std::vector<SummaryRow> SummarizeTrials(const ExperimentConfig& /*config*/, cons
 
 std::string SummaryCsv(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  std::vector<std::string> header = {"method", "point"};
-  for (const std::string& c : SweepColumns(config)) header.push_back(c);
-  header.push_back("trials");
-  header.push_back("finite_trials");
+  std::vector<std::string> header = Header(config, {"trials", "finite_trials"});
   for (int m = 0; m < kNumTrialMetrics; ++m) {
     for (const char* suffix : kStatSuffixes) header.push_back(std::string(TrialMetricName(m)) + suffix);
   }
   std::string csv = CsvLine(header);
   for (const SummaryRow& r : rows) {
-    std::vector<std::string> row = {config.methods.at(r.method).Id(), std::to_string(r.point)};
-    for (const std::string& v : PointValues(points, r.point)) row.push_back(v);
+    std::vector<std::string> row = RowPrefix(config, points, r.method, r.point);
     row.push_back(std::to_string(r.trials));
     row.push_back(std::to_string(r.finite_trials));
     for (const Summary& s : r.metrics) {
@@ -367,29 +319,24 @@ std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<Su
   md += "| Method |";
   std::string rule = "|---|";
   for (const SweepAxis& a : config.sweep) {
-    md += " " + MdEscape(a.label) + " |";
+    md += " " + MarkdownEscape(a.label) + " |";
     rule += "---:|";
   }
   md += " Trials |";
   rule += "---:|";
   for (int m : metrics) {
-    md += " " + MdEscape(MetricTitle(m)) + " mean | median | 95 % interval |";
+    md += " " + MarkdownEscape(MetricTitle(m)) + " mean | median | 95 % interval |";
     rule += "---:|---:|---:|";
   }
   md += "\n" + rule + "\n";
-  for (const SummaryRow& r : rows) {
-    md += "| " + MdEscape(config.methods.at(r.method).Id()) + " |";
-    for (const std::string& v : PointValues(points, r.point)) md += " " + MdEscape(v) + " |";
-    md += " " + TrialsText(r) + " |";
-    for (int m : metrics) {
-      const Summary& s = r.metrics[m];
-      md += " " + Sig(s.mean) + " | " + Sig(s.median) + " | [" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "] |";
-    }
-    md += "\n";
-  }
+  for (const SummaryRow& r : rows) md += "| " + TableRow(config, points, r, MarkdownEscape, " | ") + " |\n";
   bool any_nonfinite = false;
   for (const SummaryRow& r : rows) any_nonfinite = any_nonfinite || r.finite_trials != r.trials;
   if (any_nonfinite) md += "\nTrials shown as f/n: only the f trials with finite poses enter the statistics.\n";
+  if (!config.expect_better.empty()) {
+    md += "\nMethods by mean rotation error at " + MetricsFrameText(config) + ", lowest first:\n\n" +
+          OrderingText(config, rows);
+  }
   return md;
 }
 
@@ -417,14 +364,7 @@ std::string SummaryLatex(const ExperimentConfig& config, const std::vector<Summa
   for (const SummaryRow& r : rows) {
     if (r.method != previous_method) tex += "\\midrule\n";
     previous_method = r.method;
-    tex += TexEscape(config.methods.at(r.method).Id());
-    for (const std::string& v : PointValues(points, r.point)) tex += " & " + TexEscape(v);
-    tex += " & " + TrialsText(r);
-    for (int m : metrics) {
-      const Summary& s = r.metrics[m];
-      tex += " & " + Sig(s.mean) + " & " + Sig(s.median) + " & [" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "]";
-    }
-    tex += " \\\\\n";
+    tex += TableRow(config, points, r, TexEscape, " & ") + " \\\\\n";
   }
   tex += "\\bottomrule\n\\end{tabular}\n";
   return tex;
@@ -436,11 +376,8 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
   for (const TrialResult& t : trials) {
     if (t.finite && !t.curve.empty()) groups[{t.method_index, t.point_index}].push_back(&t);
   }
-  std::vector<std::string> header = {"method", "point"};
-  for (const std::string& c : SweepColumns(config)) header.push_back(c);
-  for (const char* c : {"frame", "trials", "rot_err_deg_mean", "trans_err_m_mean", "rot_err_deg_median", "trans_err_m_median"}) {
-    header.push_back(c);
-  }
+  const std::vector<std::string> header = Header(
+      config, {"frame", "trials", "rot_err_deg_mean", "trans_err_m_mean", "rot_err_deg_median", "trans_err_m_median"});
   std::string csv = CsvLine(header);
   for (auto& [key, group] : groups) {
     std::sort(group.begin(), group.end(), [](const TrialResult* a, const TrialResult* b) { return a->trial < b->trial; });
@@ -453,8 +390,7 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
         rot.push_back(c[k].rot_err_deg);
         trans.push_back(c[k].trans_err_m);
       }
-      std::vector<std::string> row = {config.methods.at(key.first).Id(), std::to_string(key.second)};
-      for (const std::string& v : PointValues(points, key.second)) row.push_back(v);
+      std::vector<std::string> row = RowPrefix(config, points, key.first, key.second);
       row.push_back(std::to_string(mean[k].frame));
       row.push_back(std::to_string(curves.size()));
       row.push_back(FormatDouble(mean[k].rot_err_deg));
@@ -465,6 +401,34 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
     }
   }
   return csv;
+}
+
+std::string PointText(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t point) {
+  if (config.sweep.empty()) return "(no sweep)";
+  std::string s;
+  for (size_t a = 0; a < config.sweep.size(); ++a) {
+    s += (a ? ", " : "") + config.sweep[a].parameter + " = " + FormatValue(points[point].values[a]);
+  }
+  return s;
+}
+
+std::string OrderingText(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  std::map<size_t, std::vector<const SummaryRow*>> by_point;
+  for (const SummaryRow& row : rows) by_point[row.point].push_back(&row);
+  std::string text;
+  for (auto& [point, group] : by_point) {
+    std::stable_sort(group.begin(), group.end(), [](const SummaryRow* a, const SummaryRow* b) {
+      return a->metrics[kRotErrDeg].mean < b->metrics[kRotErrDeg].mean;
+    });
+    text += "- " + PointText(config, points, point) + ":";
+    for (size_t i = 0; i < group.size(); ++i) {
+      text += std::string(i ? " <" : "") + " " + config.methods.at(group[i]->method).Id() + " (" +
+              Sig(group[i]->metrics[kRotErrDeg].mean) + " deg)";
+    }
+    text += "\n";
+  }
+  return text;
 }
 
 void WriteSummaries(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
@@ -502,7 +466,7 @@ MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
   const std::vector<Job> jobs = ExperimentJobs(merged.config);
   const size_t points = ExpandSweep(merged.config.sweep).size();
   auto job_index = [&](const TrialResult& t) {
-    return (t.method_index * points + t.point_index) * static_cast<size_t>(merged.config.trials) + static_cast<size_t>(t.trial);
+    return JobIndex(points, merged.config.trials, t.method_index, t.point_index, t.trial);
   };
   std::vector<int> seen(jobs.size(), 0);
   for (const TrialResult& t : merged.trials) ++seen.at(job_index(t));

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "experiments/experiment_config.h"
-#include "experiments/statistics.h"
+#include "evaluation/statistics.h"
 #include "experiments/trial_result.h"
 
 namespace slt {
@@ -46,6 +46,12 @@ std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<Su
 std::string SummaryLatex(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
 // Mean and median error per frame over the finite trials of each (method, point).
 std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialResult>& trials);
+
+// "- <point>: a (0.18) < b (1.5)\n" per sweep point: the methods from the lowest mean rotation
+// error at the metrics frame up (the full ordering, of which a config's expect_better are pairs).
+std::string OrderingText(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
+// "noise.endpoints = sliding" ("(no sweep)" without one).
+std::string PointText(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t point);
 
 // summary.csv, summary.md, summary.tex and (per_frame_curves) curves.csv.
 void WriteSummaries(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials);

@@ -2,16 +2,11 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 #include <filesystem>
-#include <random>
-#include <thread>
 
 #include "common/json_reader.h"
-#include "experiments/csv.h"
 #include "experiments/regression.h"
-#include "experiments/statistics.h"
 
 namespace slt {
 namespace {
@@ -24,98 +19,6 @@ std::string TempDir(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();
-}
-
-TEST(Statistics, QuantileInterpolatesLinearlyBetweenOrderStatistics) {
-  // Values checked against numpy.percentile (default "linear" method).
-  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.5), 2.5);
-  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.025), 1.075);
-  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.975), 3.925);
-  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 0.0), 1.0);
-  EXPECT_DOUBLE_EQ(Quantile({4, 1, 3, 2}, 1.0), 4.0);
-  std::vector<double> twenty;
-  for (int i = 0; i < 20; ++i) twenty.push_back(i);
-  EXPECT_DOUBLE_EQ(Quantile(twenty, 0.025), 0.475);  // np.percentile(range(20), 2.5)
-  EXPECT_DOUBLE_EQ(Quantile(twenty, 0.975), 18.525);
-  EXPECT_DOUBLE_EQ(Quantile({7}, 0.975), 7.0);
-  EXPECT_TRUE(std::isnan(Quantile({}, 0.5)));
-}
-
-TEST(Statistics, SummaryLeavesOutNonFiniteValues) {
-  const Summary s = Summarize({1, 2, std::nan(""), 3, 10});
-  EXPECT_EQ(s.count, 4u);
-  EXPECT_DOUBLE_EQ(s.mean, 4.0);
-  EXPECT_DOUBLE_EQ(s.median, 2.5);
-  EXPECT_DOUBLE_EQ(s.p2_5, 1.075);
-  EXPECT_DOUBLE_EQ(s.p97_5, 10 - 0.075 * 7);
-  const Summary none = Summarize({std::nan("")});
-  EXPECT_EQ(none.count, 0u);
-  EXPECT_TRUE(std::isnan(none.mean));
-}
-
-TEST(Csv, QuotesAndParsesBack) {
-  const std::vector<std::string> fields = {"plain", "with, comma", "with \"quote\"", "line\nbreak", ""};
-  const CsvTable t = ParseCsv(CsvLine({"a", "b", "c", "d", "e"}) + CsvLine(fields), "t.csv");
-  ASSERT_EQ(t.rows.size(), 1u);
-  EXPECT_EQ(t.rows[0], fields);
-  EXPECT_EQ(t.Column("c"), 2u);
-  EXPECT_THROW(t.Column("z"), std::runtime_error);
-  EXPECT_THROW(ParseCsv("a,b\n1,2,3\n", "t.csv"), std::runtime_error);
-  EXPECT_THROW(ParseCsv("a,b\n\"1,2\n", "t.csv"), std::runtime_error);
-}
-
-TEST(Csv, NumbersRoundTripExactly) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-10, 10);
-  for (int i = 0; i < 1000; ++i) {
-    const double v = u(rng) * std::pow(10.0, static_cast<int>(u(rng)));
-    EXPECT_EQ(ParseDouble(FormatDouble(v)), v);
-  }
-  EXPECT_TRUE(std::isnan(ParseDouble(FormatDouble(std::nan("")))));
-  EXPECT_EQ(ParseDouble(FormatDouble(-HUGE_VAL)), -HUGE_VAL);
-  EXPECT_THROW(ParseDouble("1.5x"), std::invalid_argument);
-  EXPECT_THROW(ParseDouble(""), std::invalid_argument);
-}
-
-TEST(AtomicWrite, ReadersSeeTheOldOrTheNewFileNeverAPart) {
-  const std::string dir = TempDir("atomic");
-  const std::string path = dir + "/summary.csv";
-  const std::string a(1 << 20, 'a'), b(1 << 20, 'b');
-  WriteTextFileAtomically(path, a);
-  std::atomic<bool> done{false};
-  std::atomic<int> reads{0}, torn{0};
-  std::thread reader([&] {
-    while (!done.load()) {
-      const std::string s = ReadTextFile(path);
-      if (s != a && s != b) ++torn;
-      ++reads;
-    }
-  });
-  for (int i = 0; i < 40; ++i) WriteTextFileAtomically(path, i % 2 ? a : b);
-  done.store(true);
-  reader.join();
-  EXPECT_EQ(torn.load(), 0);
-  EXPECT_GT(reads.load(), 0);
-  // Nothing but the file is left in the directory (no temporary files).
-  size_t entries = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    ++entries;
-    EXPECT_EQ(entry.path().filename(), "summary.csv");
-  }
-  EXPECT_EQ(entries, 1u);
-}
-
-TEST(AtomicWrite, AFailedWriteLeavesNoFile) {
-  const std::string dir = TempDir("atomic_fail");
-  fs::create_directories(dir + "/target");  // a directory where the file should go: rename fails
-  EXPECT_THROW(WriteTextFileAtomically(dir + "/target", "x"), std::runtime_error);
-  size_t entries = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    ++entries;
-    EXPECT_EQ(entry.path().filename(), "target");
-  }
-  EXPECT_EQ(entries, 1u);
-  EXPECT_TRUE(fs::is_empty(dir + "/target"));
 }
 
 ExperimentConfig TwoMethodConfig() {
@@ -321,20 +224,28 @@ TEST(Regression, ToleranceNewMethodsAndUnregisteredReferenceMethods) {
   EXPECT_NE(left_out.failures[0].find("was not run"), std::string::npos);
 }
 
-TEST(Regression, ExpectedBestMethod) {
+TEST(Regression, ExpectedOrderingPairs) {
   ExperimentConfig c = TwoMethodConfig();
   const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
-  EXPECT_TRUE(CheckExpectedBest(c, rows).ok());  // nothing expected
-  c.expect_best = "trifocal_line_ekf";
+  EXPECT_TRUE(CheckOrderings(c, rows).ok());  // nothing expected
+  EXPECT_EQ(SummaryMarkdown(c, rows).find("lowest first"), std::string::npos);
   // Method 0 has the same rotation error and half the translation error of method 1 at point 0,
   // but a larger rotation error at point 1 (where method 1 lost a trial).
-  const RegressionReport report = CheckExpectedBest(c, rows);
+  c.expect_better = {{"trifocal_line_ekf", c.methods[1].Id()}};
+  const RegressionReport report = CheckOrderings(c, rows);
   ASSERT_EQ(report.failures.size(), 1u) << report.table;
   EXPECT_NE(report.failures[0].find("ordering is lost at noise.endpoint_px = 1.5"), std::string::npos) << report.failures[0];
-  c.expect_best = c.methods[1].Id();
-  const RegressionReport other = CheckExpectedBest(c, rows);
-  EXPECT_FALSE(other.ok());
+  // Restricted to the first point, the pair holds.
+  c.expect_better[0].at = {{"noise.endpoint_px", 0}};
+  EXPECT_TRUE(CheckOrderings(c, rows).ok()) << CheckOrderings(c, rows).table;
+  // The other way round it fails on the translation error there.
+  c.expect_better = {{c.methods[1].Id(), "trifocal_line_ekf", {{"noise.endpoint_px", 0}}}};
+  const RegressionReport other = CheckOrderings(c, rows);
+  ASSERT_FALSE(other.ok());
   EXPECT_NE(other.failures[0].find("trans_err_m"), std::string::npos);
+  // The summary lists the full ordering at every point once a config states orderings.
+  const std::string md = SummaryMarkdown(c, rows);
+  EXPECT_NE(md.find("- noise.endpoint_px = 1.5: " + c.methods[1].Id()), std::string::npos) << md;
 }
 
 }  // namespace

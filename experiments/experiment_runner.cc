@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "common/random.h"
-#include "experiments/statistics.h"
+#include "evaluation/statistics.h"
 #include "methods/pose_tracker.h"
 #include "simulator/simulator.h"
 
@@ -33,17 +33,9 @@ double PathLength(const Trajectory& trajectory) {
 std::vector<Job> ExperimentJobs(const ExperimentConfig& config) {
   const size_t points = ExpandSweep(config.sweep).size();
   std::vector<Job> jobs;
-  jobs.reserve(config.methods.size() * points * static_cast<size_t>(config.trials));
   for (size_t m = 0; m < config.methods.size(); ++m) {
     for (size_t p = 0; p < points; ++p) {
-      for (int k = 0; k < config.trials; ++k) {
-        Job job;
-        job.index = jobs.size();
-        job.method = m;
-        job.point = p;
-        job.trial = k;
-        jobs.push_back(job);
-      }
+      for (int k = 0; k < config.trials; ++k) jobs.push_back({JobIndex(points, config.trials, m, p, k), m, p, k});
     }
   }
   return jobs;
@@ -95,28 +87,23 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
 
   std::unique_ptr<PoseTracker> tracker =
       CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
-  tracker->Reset(sequence.rig);
+  const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
 
   Trajectory estimate;
-  estimate.reserve(sequence.frames.size());
+  estimate.reserve(run.size());
   std::vector<double> times_us;
-  times_us.reserve(sequence.frames.size());
+  times_us.reserve(run.size());
   double features_used = 0.0, features_available = 0.0;
-  int rebootstraps = 0, lost = 0;
-  for (size_t k = 0; k < sequence.frames.size(); ++k) {
-    const auto start = std::chrono::steady_clock::now();
-    const TrackerOutput out = tracker->Track(sequence.frames[k]);
-    const auto stop = std::chrono::steady_clock::now();
-    times_us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+  int new_references = 0, lost = 0;
+  for (size_t k = 0; k < run.size(); ++k) {
+    const TrackerOutput& out = run[k].output;
+    times_us.push_back(run[k].time_us);
     features_used += out.features_used;
     features_available += out.features_available;
-    if (k > 0 && out.status == TrackingStatus::kReinitialized) ++rebootstraps;
+    if (k > 0 && out.status == TrackingStatus::kNewReference) ++new_references;
     if (out.status == TrackingStatus::kLost) ++lost;
     r.finite = r.finite && Finite(out.cam_from_world);
-    TimedPose pose;
-    pose.time = sequence.frames[k].time;
-    pose.world_from_cam = out.cam_from_world.Inverse();
-    estimate.push_back(pose);
+    estimate.push_back({sequence.frames[k].time, out.cam_from_world.Inverse()});
   }
 
   auto& m = r.metrics;
@@ -128,7 +115,7 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   m[kTimeMedianUs] = Quantile(times_us, 0.5);
   m[kFeaturesUsed] = features_used / n;
   m[kFeaturesAvailable] = features_available / n;
-  m[kRebootstraps] = rebootstraps;
+  m[kNewReferences] = new_references;
   m[kLostFrames] = lost;
   m[kPathLengthM] = PathLength(sim.ground_truth);
   if (r.finite && !estimate.empty()) {

@@ -16,6 +16,11 @@
 
 namespace slt {
 
+// The index of a job: (method * points + point) * trials + trial, with `points` sweep points.
+inline size_t JobIndex(size_t points, int trials, size_t method, size_t point, int trial) {
+  return (method * points + point) * static_cast<size_t>(trials) + static_cast<size_t>(trial);
+}
+
 struct Job {
   size_t index = 0;
   size_t method = 0;

@@ -6,7 +6,7 @@
 
 #include "common/json_reader.h"
 #include "common/random.h"
-#include "experiments/csv.h"
+#include "common/csv.h"
 #include "experiments/experiment_driver.h"
 
 namespace slt {

@@ -14,17 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "experiments/csv.h"
+#include "common/csv.h"
 #include "experiments/experiment_config.h"
 #include "experiments/experiment_output.h"
 
 namespace slt {
-
-struct RegressionTolerance {
-  double relative = 1.25;
-  double rot_floor_deg = 0.02;
-  double trans_floor_m = 0.0005;
-};
 
 struct RegressionReport {
   std::vector<std::string> failures;  // empty = pass
@@ -33,14 +27,21 @@ struct RegressionReport {
   bool ok() const { return failures.empty(); }
 };
 
+struct RegressionTolerance {
+  double relative = 1.25;
+  double rot_floor_deg = 0.02;
+  double trans_floor_m = 0.0005;
+};
+
 // `reference_summary` is the reference's summary.csv, `reference_config` its
 // config.resolved.json (the methods' tracker names are read from it).
 RegressionReport CompareWithReference(const ExperimentConfig& config, const std::vector<SummaryRow>& rows,
                                       const CsvTable& reference_summary, const nlohmann::json& reference_config,
                                       const RegressionTolerance& tolerance = {});
 
-// config.expect_best must have the lowest mean rotation and translation error at the metrics
-// frame at every sweep point, among the methods of the run (nothing to check when empty).
-RegressionReport CheckExpectedBest(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
+// Every pair of config.expect_better at every sweep point it selects: `better` has the lower
+// mean rotation and translation error at the metrics frame (nothing to check when empty). The
+// table also lists the full ordering at every point.
+RegressionReport CheckOrderings(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
 
 }  // namespace slt

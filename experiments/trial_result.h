@@ -29,7 +29,7 @@ enum TrialMetric {
   kTimeMedianUs,       // median wall time of one Track() call
   kFeaturesUsed,       // mean over frames of TrackerOutput::features_used
   kFeaturesAvailable,  // mean over frames of TrackerOutput::features_available
-  kRebootstraps,       // frames after the first with status kReinitialized
+  kNewReferences,       // frames after the first with status kNewReference (new reference pairs)
   kLostFrames,         // frames with status kLost
   kNumTrialMetrics
 };

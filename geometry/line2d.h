@@ -44,7 +44,7 @@ double SignedDistance(const Eigen::Vector3d& line, const Eigen::Vector2d& point,
 
 // The slope/polar-radius form used by the paper's residual: x cos(theta) + y sin(theta) = lambda
 // with theta = atan2(b, a) and lambda = -c / sqrt(a^2 + b^2). Defined for every line with
-// (a, b) != 0: there is no singular direction (the printed eq. 9 divides by zero, NOTES.md).
+// (a, b) != 0: there is no singular direction (the printed eq. 9 divides by zero, docs/derivations.md Sec. 2).
 Eigen::Vector2d ThetaLambdaFromLine(const Eigen::Vector3d& line,
                                     Eigen::Matrix<double, 2, 3>* d_line = nullptr);
 

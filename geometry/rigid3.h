@@ -55,7 +55,4 @@ struct Rigid3d {
   Eigen::Vector3d Center() const { return -(rotation.transpose() * translation); }
 };
 
-// Rotation angle of R in radians, in [0, pi], robust near 0 and pi.
-double RotationAngle(const Eigen::Matrix3d& rotation);
-
 }  // namespace slt

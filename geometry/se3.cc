@@ -137,15 +137,5 @@ Matrix6d LeftJacobianSE3FirstOrder(const Vector6d& xi) {
   return out;
 }
 
-Matrix6d RightJacobianSE3(const Vector6d& xi) { return LeftJacobianSE3(-xi); }
-
-Matrix6d LeftJacobianInverseSE3(const Vector6d& xi) {
-  const Eigen::Matrix3d Jinv = LeftJacobianInverseSO3(xi.tail<3>());
-  Matrix6d out = Matrix6d::Zero();
-  out.topLeftCorner<3, 3>() = Jinv;
-  out.bottomRightCorner<3, 3>() = Jinv;
-  out.topRightCorner<3, 3>() = -Jinv * QMatrix(xi.head<3>(), xi.tail<3>()) * Jinv;
-  return out;
-}
 
 }  // namespace slt

@@ -42,6 +42,8 @@ Eigen::Matrix4d Hat(const Vector6d& xi);
 
 // Paper eq. 5: the rigid motion exp(Hat(xi)), in closed form.
 Rigid3d ExpSE3(const Vector6d& xi);
+// Rotation angle of R in radians, in [0, pi], robust near 0 and pi.
+double RotationAngle(const Eigen::Matrix3d& rotation);
 // Inverse of ExpSE3 for rotation angles below pi.
 Vector6d LogSE3(const Rigid3d& transform);
 
@@ -52,11 +54,9 @@ Rigid3d FirstOrderSE3(const Vector6d& xi);
 // Adjoint: T Exp(xi) T^-1 = Exp(Adjoint(T) xi); for xi = [v; w], [[R, [t]_x R], [0, R]].
 Matrix6d Adjoint(const Rigid3d& transform);
 
-// SE(3) left and right Jacobians (Barfoot eq. 7.83-7.86 with the [v; w] ordering);
-// J_r(xi) = J_l(-xi).
+// The SE(3) left Jacobian (Barfoot eq. 7.83-7.86 with the [v; w] ordering): the exact value
+// the first-order form below is checked against.
 Matrix6d LeftJacobianSE3(const Vector6d& xi);
-Matrix6d RightJacobianSE3(const Vector6d& xi);
-Matrix6d LeftJacobianInverseSE3(const Vector6d& xi);
 // I + ad(xi) / 2: J_l to first order (error O(|xi|^2)), for per-frame twists in hot loops where
 // the Jacobian only sets a convergence rate or a covariance to that order.
 Matrix6d LeftJacobianSE3FirstOrder(const Vector6d& xi);

@@ -21,15 +21,6 @@ Eigen::Matrix4d PlaneToReferenceMatrix(const Rigid3d& cam_from_ref) {
   return m;
 }
 
-// M^-T: [R 0; -t^T R 1].
-Eigen::Matrix4d PlaneToCameraMatrix(const Rigid3d& cam_from_ref) {
-  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
-  m.topLeftCorner<3, 3>() = cam_from_ref.rotation;
-  m.bottomLeftCorner<1, 3>() = -cam_from_ref.translation.transpose() * cam_from_ref.rotation;
-  m(3, 3) = 1.0;
-  return m;
-}
-
 }  // namespace
 
 TrifocalTensor TrifocalTensorFromCameras(const Matrix34d& A, const Matrix34d& B) {
@@ -97,44 +88,11 @@ Eigen::Vector4d PlaneToReference(const Rigid3d& cam_from_ref, const Eigen::Vecto
   return out;
 }
 
-Eigen::Vector4d PlaneToCamera(const Rigid3d& cam_from_ref, const Eigen::Vector4d& plane_in_ref,
-                              Matrix46d* d_delta) {
-  Eigen::Vector4d out;
-  out.head<3>() = cam_from_ref.rotation * plane_in_ref.head<3>();
-  out(3) = plane_in_ref(3) - cam_from_ref.translation.dot(out.head<3>());
-  if (d_delta) {
-    // Exp(d)^-T pi ~= pi - [n x w; n . v].
-    d_delta->topLeftCorner<3, 3>().setZero();
-    d_delta->topRightCorner<3, 3>() = -Skew(out.head<3>());
-    d_delta->bottomLeftCorner<1, 3>() = -out.head<3>().transpose();
-    d_delta->bottomRightCorner<1, 3>().setZero();
-  }
-  return out;
-}
-
 Eigen::Vector4d IntersectRayWithPlane(const Eigen::Vector3d& point1, const Eigen::Vector4d& plane) {
   Eigen::Vector4d X;
   X.head<3>() = plane(3) * point1;
   X(3) = -plane.head<3>().dot(point1);
   return X;
-}
-
-Eigen::Vector2d ProjectToNormalized(const Rigid3d& cam_from_ref, const Eigen::Vector3d& point_in_ref,
-                                    Matrix26d* d_delta, Eigen::Matrix<double, 2, 3>* d_point) {
-  const Eigen::Vector3d Xc = cam_from_ref * point_in_ref;
-  const double iz = 1.0 / Xc.z();
-  const Eigen::Vector2d p(Xc.x() * iz, Xc.y() * iz);
-  if (d_delta || d_point) {
-    Eigen::Matrix<double, 2, 3> dp;
-    dp << iz, 0.0, -p.x() * iz, 0.0, iz, -p.y() * iz;
-    // Exp(d) Xc ~= Xc + v + w x Xc.
-    if (d_delta) {
-      d_delta->leftCols<3>() = dp;
-      d_delta->rightCols<3>() = -dp * Skew(Xc);
-    }
-    if (d_point) *d_point = dp * cam_from_ref.rotation;
-  }
-  return p;
 }
 
 void TransferCurrentToReference(const Rigid3d& right_from_left, const Rigid3d& cam_from_ref,
@@ -170,39 +128,6 @@ void TransferCurrentToReference(const Rigid3d& right_from_left, const Rigid3d& c
   out->via_Tprime_d_pose = b2 * j_left + b3 * j_right;
   out->via_Tprime_d_cur_left = b2 * d_pleft_d_line;
   out->via_Tprime_d_cur_right = b3 * (to_ref * right_bp);
-}
-
-void TransferReferenceToCurrent(const Rigid3d& right_from_left, const Rigid3d& cam_from_ref,
-                                const Eigen::Vector3d& ref_left, const Eigen::Vector3d& ref_right,
-                                bool with_jacobians, ReferenceToCurrentTransfer* out) {
-  const Eigen::Matrix<double, 4, 3> right_bp = RightCameraBackProjection(right_from_left);
-  Eigen::Vector4d p_left;
-  p_left << ref_left, 0.0;
-  const Eigen::Vector4d p_right = right_bp * ref_right;
-  const Rigid3d right_cam_from_ref = right_from_left * cam_from_ref;
-
-  Matrix46d jl, jr, jl2, jr2;
-  const bool J = with_jacobians;
-  const Eigen::Vector4d c_left = PlaneToCamera(cam_from_ref, p_left, J ? &jl : nullptr);
-  const Eigen::Vector4d c_right = PlaneToCamera(cam_from_ref, p_right, J ? &jr : nullptr);
-  const Eigen::Vector4d d_left = PlaneToCamera(right_cam_from_ref, p_left, J ? &jl2 : nullptr);
-  const Eigen::Vector4d d_right = PlaneToCamera(right_cam_from_ref, p_right, J ? &jr2 : nullptr);
-
-  Eigen::Matrix<double, 3, 4> c2, c3, d2, d3;
-  out->into_left = LineFromPlanePair(c_left, c_right, J ? &c2 : nullptr, J ? &c3 : nullptr);
-  out->into_right = LineFromPlanePair(d_left, d_right, J ? &d2 : nullptr, J ? &d3 : nullptr);
-  out->plane_sine = PlaneAngleSine(p_left, p_right);
-  if (!J) return;
-  // E Exp(d) M = Exp(Ad_E d) E M: the right camera sees the perturbation through Ad_E.
-  const Matrix6d ad_e = Adjoint(right_from_left);
-  out->into_left_d_pose = c2 * jl + c3 * jr;
-  out->into_right_d_pose = (d2 * jl2 + d3 * jr2) * ad_e;
-  const Eigen::Matrix4d to_cam = PlaneToCameraMatrix(cam_from_ref);
-  const Eigen::Matrix4d to_right_cam = PlaneToCameraMatrix(right_cam_from_ref);
-  out->into_left_d_ref_left = c2 * to_cam.leftCols<3>();
-  out->into_left_d_ref_right = c3 * (to_cam * right_bp);
-  out->into_right_d_ref_left = d2 * to_right_cam.leftCols<3>();
-  out->into_right_d_ref_right = d3 * (to_right_cam * right_bp);
 }
 
 }  // namespace slt

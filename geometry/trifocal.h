@@ -13,7 +13,8 @@
 //   l = pi'_{1:3} pi''_4 - pi'_4 pi''_{1:3},
 // which is the image in view 1 of the 3-D line pi' ^ pi''; it is term for term eq. 16.
 //
-// Pose perturbations are on the left and in the camera frame: cam_from_ref <- Exp(d) cam_from_ref,
+// (The other direction, the reference pair into the current pair, is the Pluecker form of
+// plucker.h.) Pose perturbations are on the left and in the camera frame: cam_from_ref <- Exp(d) cam_from_ref,
 // d = [v; w] (se3.h). Every Jacobian here is tested against central differences.
 #pragma once
 
@@ -46,11 +47,6 @@ Eigen::Vector3d TransferPoint(const TrifocalTensor& tensor, const Eigen::Vector3
 Eigen::Vector3d PerpendicularLineThroughPoint(const Eigen::Vector3d& epipolar_line,
                                               const Eigen::Vector2d& point);
 
-// pi = P^T l: the plane through the camera centre that projects to line l.
-inline Eigen::Vector4d BackProjectLine(const Matrix34d& P, const Eigen::Vector3d& line) {
-  return P.transpose() * line;
-}
-
 // Sine of the angle between the normals of two planes.
 double PlaneAngleSine(const Eigen::Vector4d& a, const Eigen::Vector4d& b);
 
@@ -65,21 +61,9 @@ Eigen::Vector3d LineFromPlanePair(const Eigen::Vector4d& plane2, const Eigen::Ve
 // cam_from_ref <- Exp(d) cam_from_ref at d = 0.
 Eigen::Vector4d PlaneToReference(const Rigid3d& cam_from_ref, const Eigen::Vector4d& plane_in_cam,
                                  Matrix46d* d_delta = nullptr);
-// A plane given in the reference frame, expressed in the camera frame: pi_cam = M^-T pi_ref,
-// with the Jacobian under the same perturbation.
-Eigen::Vector4d PlaneToCamera(const Rigid3d& cam_from_ref, const Eigen::Vector4d& plane_in_ref,
-                              Matrix46d* d_delta = nullptr);
-
 // The 3-D point (homogeneous) where the ray of x1 (view [I | 0], normalised coordinates)
 // meets a plane; the plane form of point transfer.
 Eigen::Vector4d IntersectRayWithPlane(const Eigen::Vector3d& point1, const Eigen::Vector4d& plane);
-
-// Normalised projection of a reference-frame point into the camera cam_from_ref, with the
-// Jacobians under the left pose perturbation and with respect to the point. Caller ensures
-// the point is in front of the camera.
-Eigen::Vector2d ProjectToNormalized(const Rigid3d& cam_from_ref, const Eigen::Vector3d& point_in_ref,
-                                    Matrix26d* d_delta = nullptr,
-                                    Eigen::Matrix<double, 2, 3>* d_point = nullptr);
 
 // The two transfers of the paper's Fig. 3 for one line (normalised coordinates), with the
 // stereo rig E = right_from_left and the current left camera M = cam_from_ref:
@@ -104,23 +88,5 @@ void TransferCurrentToReference(const Rigid3d& right_from_left, const Rigid3d& c
                                 const Eigen::Vector3d& ref_right, const Eigen::Vector3d& cur_left,
                                 const Eigen::Vector3d& cur_right, bool with_jacobians,
                                 CurrentToReferenceTransfer* out);
-
-// The other direction: the reference pair (l_1, l'_1) transferred into the current left and
-// right images, with the current camera as the tensor's first view (the image of the 3-D line
-// the reference pair defines).
-struct ReferenceToCurrentTransfer {
-  Eigen::Vector3d into_left;
-  Eigen::Vector3d into_right;
-  double plane_sine;  // between the planes of the reference left and right lines
-  Matrix36d into_left_d_pose;
-  Matrix36d into_right_d_pose;
-  Eigen::Matrix3d into_left_d_ref_left;
-  Eigen::Matrix3d into_left_d_ref_right;
-  Eigen::Matrix3d into_right_d_ref_left;
-  Eigen::Matrix3d into_right_d_ref_right;
-};
-void TransferReferenceToCurrent(const Rigid3d& right_from_left, const Rigid3d& cam_from_ref,
-                                const Eigen::Vector3d& ref_left, const Eigen::Vector3d& ref_right,
-                                bool with_jacobians, ReferenceToCurrentTransfer* out);
 
 }  // namespace slt

@@ -24,14 +24,14 @@ namespace slt {
 
 enum class TrackingStatus {
   kTracking,       // the frame was measured and the pose updated
-  kReinitialized,  // the tracker (re)started here: new reference or recovery after a failure
+  kNewReference,   // a new reference pair starts here (the first frame, or too few features left)
   kLost,           // too few usable features: the pose is a prediction only
 };
 
 inline const char* TrackingStatusName(TrackingStatus status) {
   switch (status) {
     case TrackingStatus::kTracking: return "tracking";
-    case TrackingStatus::kReinitialized: return "reinitialized";
+    case TrackingStatus::kNewReference: return "new_reference";
     case TrackingStatus::kLost: return "lost";
   }
   return "unknown";
@@ -52,7 +52,7 @@ class PoseTracker {
   // std::invalid_argument if the tracker cannot use the rig.
   virtual void Reset(const StereoRig& rig) = 0;
   // Processes the next frame. The first frame after Reset defines the world and returns the
-  // identity with status kReinitialized.
+  // identity with status kNewReference.
   virtual TrackerOutput Track(const StereoFrame& frame) = 0;
   // Options in effect, every default filled in (saved next to experiment results).
   virtual nlohmann::json Options() const = 0;
@@ -84,6 +84,15 @@ struct TrackerInfo {
   // the paper's Table 1).
   int minimum_lines = 2;
 };
+
+// One frame of a run: the tracker's output and the wall time of its Track() call.
+struct TrackedFrame {
+  TrackerOutput output;
+  double time_us = 0.0;
+};
+// Resets `tracker` with the sequence's rig, then tracks every frame in order, timing each
+// Track() call: the one loop that `track`, the experiment runner and the tests share.
+std::vector<TrackedFrame> TrackSequence(PoseTracker& tracker, const StereoSequence& sequence);
 
 // Every registered tracker, in registration order.
 const std::vector<TrackerInfo>& RegisteredTrackers();

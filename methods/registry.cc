@@ -1,3 +1,4 @@
+#include <chrono>
 #include <sstream>
 #include <stdexcept>
 
@@ -38,6 +39,19 @@ const TrackerInfo& FindTracker(const std::string& name) {
 std::unique_ptr<PoseTracker> CreateTracker(const std::string& name, const nlohmann::json& options,
                                            const std::string& where) {
   return FindTracker(name).create(options, where);
+}
+
+std::vector<TrackedFrame> TrackSequence(PoseTracker& tracker, const StereoSequence& sequence) {
+  std::vector<TrackedFrame> frames;
+  frames.reserve(sequence.frames.size());
+  tracker.Reset(sequence.rig);
+  for (const StereoFrame& frame : sequence.frames) {
+    const auto start = std::chrono::steady_clock::now();
+    TrackedFrame tracked{tracker.Track(frame), 0.0};
+    tracked.time_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    frames.push_back(tracked);
+  }
+  return frames;
 }
 
 }  // namespace slt

@@ -4,7 +4,6 @@
 //         [--kitti traj.kitti] [--log frames.csv] [--print-config]
 //   track --list
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -54,7 +53,7 @@ int main(int argc, char** argv) {
     if (input.empty()) throw CLI::RequiredError("--input");
     if (output.empty()) throw CLI::RequiredError("--output");
     const StereoSequence sequence = ReadStereoLines(input);
-    tracker->Reset(sequence.rig);
+    const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
 
     Trajectory trajectory;
     trajectory.reserve(sequence.frames.size());
@@ -62,21 +61,19 @@ int main(int argc, char** argv) {
     log << "frame,time,status,features_available,features_used,time_us\n";
     int counts[3] = {0, 0, 0};
     double total_us = 0.0;
-    for (size_t k = 0; k < sequence.frames.size(); ++k) {
-      const StereoFrame& frame = sequence.frames[k];
-      const auto t0 = std::chrono::steady_clock::now();
-      const TrackerOutput out = tracker->Track(frame);
-      const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-      total_us += us;
+    for (size_t k = 0; k < run.size(); ++k) {
+      const TrackerOutput& out = run[k].output;
+      const double time = sequence.frames[k].time;
+      total_us += run[k].time_us;
       ++counts[static_cast<int>(out.status)];
-      trajectory.push_back({frame.time, out.cam_from_world.Inverse()});
-      log << k << "," << frame.time << "," << TrackingStatusName(out.status) << "," << out.features_available
-          << "," << out.features_used << "," << us << "\n";
+      trajectory.push_back({time, out.cam_from_world.Inverse()});
+      log << k << "," << time << "," << TrackingStatusName(out.status) << "," << out.features_available << ","
+          << out.features_used << "," << run[k].time_us << "\n";
     }
     WriteTumTrajectory(output, trajectory);
     if (!kitti_path.empty()) WriteKittiTrajectory(kitti_path, trajectory);
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
-    std::fprintf(stderr, "track: %s: %zu frames (%d tracking, %d reinitialized, %d lost), %.1f us per frame\n",
+    std::fprintf(stderr, "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost), %.1f us per frame\n",
                  method.c_str(), sequence.frames.size(), counts[0], counts[1], counts[2],
                  sequence.frames.empty() ? 0.0 : total_us / sequence.frames.size());
     return 0;

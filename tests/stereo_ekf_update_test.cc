@@ -225,14 +225,14 @@ TEST(FirstUpdate, AFeatureDegenerateAtTheIterateLeavesTheUpdate) {
 TEST(FirstUpdate, ANewReferenceOnAFrameWithoutUpdateIsStillLost) {
   // The paper preset counts the lines inside the gate for feature replacement: a frame whose
   // lines all miss the gate makes the current pair the new reference, but the pose is only a
-  // prediction, and the frame is reported lost (not "reinitialized").
+  // prediction, and the frame is reported lost (not "new_reference").
   auto model = LinearFeatureModel(3, TrueDelta(), 5);
   for (int i = 0; i < 3; ++i) model->feature(i).offset = Eigen::Vector4d::Constant(10.0);  // far outside
   StereoEkfTracker tracker(PaperFilter(false), std::move(model), nlohmann::json::object());
   const TrackerOutput out = TrackFirstUpdate(&tracker);
   EXPECT_EQ(out.status, TrackingStatus::kLost);
   EXPECT_EQ(out.features_used, 0);
-  EXPECT_EQ(tracker.counters().rebootstraps, 1);
+  EXPECT_EQ(tracker.counters().new_references, 1);
   EXPECT_EQ(tracker.counters().lost_frames, 1);
 }
 

@@ -1,5 +1,6 @@
 #include "tests/test_support.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/se3.h"
@@ -8,9 +9,7 @@ namespace slt {
 
 TrackRun RunTracker(PoseTracker& tracker, const StereoSequence& sequence) {
   TrackRun run;
-  tracker.Reset(sequence.rig);
-  run.outputs.reserve(sequence.frames.size());
-  for (const StereoFrame& frame : sequence.frames) run.outputs.push_back(tracker.Track(frame));
+  for (const TrackedFrame& frame : TrackSequence(tracker, sequence)) run.outputs.push_back(frame.output);
   return run;
 }
 
@@ -44,19 +43,7 @@ TrialErrors FinalErrorOverTrials(const std::string& method, const nlohmann::json
 }
 
 StereoSequence KeepLines(const StereoSequence& sequence, const std::vector<std::int64_t>& ids) {
-  StereoSequence out;
-  out.rig = sequence.rig;
-  auto keep = [&](std::int64_t id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
-  for (const StereoFrame& frame : sequence.frames) {
-    StereoFrame f;
-    f.time = frame.time;
-    for (const LineObservation& o : frame.left)
-      if (keep(o.id)) f.left.push_back(o);
-    for (const LineObservation& o : frame.right)
-      if (keep(o.id)) f.right.push_back(o);
-    out.frames.push_back(f);
-  }
-  return out;
+  return FilterLines(sequence, [&](std::int64_t id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); });
 }
 
 std::vector<std::int64_t> WellConditionedLines(const SimulatedSequence& sim, int count) {

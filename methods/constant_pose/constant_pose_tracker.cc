@@ -11,7 +11,7 @@ void ConstantPoseTracker::Reset(const StereoRig& rig) {
 
 TrackerOutput ConstantPoseTracker::Track(const StereoFrame& frame) {
   TrackerOutput out;
-  out.status = started_ ? TrackingStatus::kTracking : TrackingStatus::kReinitialized;
+  out.status = started_ ? TrackingStatus::kTracking : TrackingStatus::kNewReference;
   out.features_available = static_cast<int>(frame.left.size());
   started_ = true;
   return out;

@@ -18,7 +18,6 @@ struct WeightedFeature {
   // Innovation r^T (J P J^T + R)^-1 r at the prediction, or its upper bound r^T R^-1 r when
   // that bound is already inside the gate.
   double nis = 0.0;
-  bool valid = false;
   // Whitened residual and Jacobian at the last linearisation (first: the prediction), for the
   // update and the per-feature posterior cost |rw + jw (d* - d_k)|^2.
   Eigen::Vector4d whitened_residual;

@@ -89,7 +89,7 @@ void PoseVelocityFilter::DampVelocity(double factor) {
   velocity_ *= factor;
 }
 
-void PoseVelocityFilter::Rebase() {
+void PoseVelocityFilter::StartNewReferencePair() {
   cam_from_ref_ = Rigid3d();
   previous_cam_from_ref_ = Rigid3d();
   covariance_.topRows<6>().setZero();

@@ -45,7 +45,7 @@ class PoseVelocityFilter {
   // feature-count sweep with 20-30 % outliers).
   void DampVelocity(double factor);
   // The current camera becomes the reference: the relative pose is exactly the identity.
-  void Rebase();
+  void StartNewReferencePair();
 
   const Rigid3d& cam_from_ref() const { return cam_from_ref_; }
   const Rigid3d& previous_cam_from_ref() const { return previous_cam_from_ref_; }

@@ -1,21 +1,28 @@
 // The stereo EKF tracker shared by the trifocal-line tracker (paper Sec. 3-4) and Yu's point
 // tracker: one filter, one FeatureModel per feature type.
 //
-// Per frame t:
-//   1. predict (eq. 18): xi_t|t-1 = xi_t-1, M_t|t-1 = Exp(xi) M_t-1 (pose_velocity_filter.h);
-//   2. evaluate every feature matched between the reference pair and the current pair at the
-//      prediction: residual, Jacobian and measurement covariance (the model's job);
-//   3. validation gate (eq. 20): r^T (J P J^T + R)^-1 r < g per feature;
-//   4. when the prior is weak (first frames) or the filter looks unhealthy, a RANSAC over
-//      feature pairs (robust_pose_solver.h) seeds the update and its inlier set, and re-seeds
-//      the filter if the prediction is inconsistent with it;
-//   5. update (eq. 19) as an iterated EKF: Gauss-Newton on
+// Track() runs each frame through five stages over one per-frame state (FrameState):
+//   1. gate: predict (eq. 18: xi_t|t-1 = xi_t-1, M_t|t-1 = Exp(xi) M_t-1, pose_velocity_filter.h),
+//      match the current pair with the reference pair, evaluate every matched feature at the
+//      prediction (residual, Jacobian, covariance: the model's job) and apply the validation
+//      gate (eq. 20): r^T (J P J^T + R)^-1 r < g per feature;
+//   2. robust start: when the prior is weak (first frames) or the filter looks unhealthy, a
+//      RANSAC over feature pairs (robust_pose_solver.h) seeds the update and its inlier set,
+//      and re-seeds the filter if the prediction is inconsistent with it;
+//   3. update (eq. 19) as an iterated EKF: Gauss-Newton on
 //      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update;
-//   6. feature replacement (Sec. 3.3): when too few reference features remain, the current
-//      pair becomes the reference and the world pose of the reference is chained.
+//   4. assess: lost (no update) or tracking; health (posterior cost against its chi-square
+//      bound) and the measurement-noise scale for the next frame;
+//   5. new reference pair (Sec. 3.3, the paper's feature replacement): when too few reference
+//      features remain, the current pair becomes the reference and the world pose of the
+//      reference is chained.
+// Stages 2 and 4 hold the robustness policy beyond the paper (RANSAC start and re-seeding,
+// health, noise adaptation, widening and velocity decay while lost); the paper preset turns it
+// off as a whole (ApplyPaperPreset), and each part has its own option for ablations.
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -38,7 +45,7 @@ class StereoEkfTracker : public PoseTracker {
   TrackerOutput Track(const StereoFrame& frame) override;
   nlohmann::json Options() const override;
   // True before the first frame and when too few features of the reference remain for the
-  // next frame to keep it (the test of MaybeRebootstrap without its "the current frame has
+  // next frame to keep it (the test of NewReferencePair without its "the current frame has
   // more features" part): the next frame then takes a new reference pair if it brings new
   // lines. (When the count falls below the threshold between two frames, the new reference
   // comes one frame later.)
@@ -47,7 +54,7 @@ class StereoEkfTracker : public PoseTracker {
   // Counters since Reset, for tests and diagnostics.
   struct Counters {
     int frames = 0;
-    int rebootstraps = 0;     // new reference pairs (not counting the first frame)
+    int new_references = 0;   // new reference pairs (not counting the first frame)
     int robust_solves = 0;    // RANSAC runs
     int reseeds = 0;          // filter re-seeded from a RANSAC solve
     int lost_frames = 0;
@@ -60,8 +67,26 @@ class StereoEkfTracker : public PoseTracker {
   const FeatureModel& model() const { return *model_; }
 
  private:
-  void Start(const StereoFrame& frame);
-  void EvaluateAtPrediction(const Rigid3d& predicted);
+  // What the stages of one frame pass on; the features themselves are in features_, valid_
+  // (measurable) and inliers_ (those entering the update).
+  struct FrameState {
+    Rigid3d predicted;
+    // Features measurable, inside the gate at the prediction, and in the update.
+    int valid = 0, gated = 0, used = 0;
+    Rigid3d linearization;                // where the update starts
+    bool blocks_at_linearization = true;  // features_ were evaluated at `linearization`
+    double cost = std::numeric_limits<double>::infinity();  // posterior cost; infinity: no update
+    TrackerOutput out;
+  };
+
+  TrackerOutput Start(const StereoFrame& frame);
+  // The stages, in order.
+  void Gate(const StereoFrame& frame, FrameState* state);
+  void RobustStart(FrameState* state);
+  void Update(FrameState* state);
+  void Assess(FrameState* state);
+  void NewReferencePair(const StereoFrame& frame, FrameState* state);
+
   // Iterated update on `inliers_`, with the filter's pose as prior mean, starting at
   // `linearization`; `blocks_at_linearization` says that features_ were evaluated there.
   // Returns the posterior cost of the measurements (whitened, squared), or infinity when it
@@ -74,8 +99,8 @@ class StereoEkfTracker : public PoseTracker {
   // Residual scalars measured by the features of this frame's update (4 per feature, fewer for
   // a feature with rows left out).
   int MeasuredRows() const;
-  // `used` = features that entered this frame's update.
-  bool MaybeRebootstrap(const StereoFrame& frame, int used);
+  // The healthy bound on the posterior cost of `rows` residual scalars.
+  double HealthyCost(int rows);
 
   StereoEkfOptions options_;
   std::unique_ptr<FeatureModel> model_;
@@ -83,8 +108,10 @@ class StereoEkfTracker : public PoseTracker {
   GateThresholds gate_;
   double median_scale_[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // median of chi-square(4) / chi-square(d)
   double reseed_gate_ = 0.0;  // chi-square, 6 dof
+  std::vector<double> healthy_cost_;  // HealthyCost by rows, filled as needed
 
   bool started_ = false;
+  // Robustness policy state: the last frame's health and update size, the noise scale.
   bool healthy_ = true;
   bool wants_new_features_ = true;
   int previous_inliers_ = 0;

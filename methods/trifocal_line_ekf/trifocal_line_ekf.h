@@ -4,7 +4,7 @@
 // Measurement model (line_transfer_model.h, eq. 13-17): per line, the two trifocal transfers
 // T(l'_1, l_t) and T'(l_t, l'_t) predict the reference line l_1; 4 residual scalars per line.
 // Filter (methods/stereo_ekf, eq. 10-12, 18-20): constant-velocity twist model, EKF update,
-// validation gate, feature replacement.
+// validation gate, new reference pairs.
 //
 // Options (JSON): {"preset": "default" | "paper", "filter": {StereoEkfOptions},
 //                  "measurement": {LineTransferOptions}}. The "paper" preset is the faithful

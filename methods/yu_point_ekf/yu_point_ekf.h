@@ -11,7 +11,7 @@
 //   r = [y - y_hat; y' - y'_hat]  (pixels, 4 scalars per point)
 // with l' the line through x' perpendicular to the epipolar line of x in I'_1.
 // Filter (methods/stereo_ekf, shared with trifocal_line_ekf): constant-velocity twist model,
-// EKF update, validation gate, feature replacement; the same code, another FeatureModel.
+// EKF update, validation gate, new reference pairs; the same code, another FeatureModel.
 //
 // Points: each line id seen in both images of a frame gives two stereo point matches, its
 // segment's endpoints (pairing rules in point_transfer_model.h). In the synthetic comparison the

@@ -1,4 +1,4 @@
-#include "experiments/csv.h"
+#include "common/csv.h"
 
 #include <charconv>
 #include <cmath>
@@ -45,6 +45,32 @@ double ParseDouble(const std::string& text) {
   const auto r = std::from_chars(first, last, value);
   if (text.empty() || r.ec != std::errc() || r.ptr != last) throw std::invalid_argument("not a number: '" + text + "'");
   return value;
+}
+
+std::string MarkdownEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::string TexEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '_': case '%': case '&': case '#': case '$': case '{': case '}':
+        out += '\\';
+        out += c;
+        break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '\\': out += "\\textbackslash{}"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 size_t CsvTable::Column(const std::string& name) const {

@@ -1,4 +1,5 @@
-// Summary statistics over trials: mean, median and the 95 % interval.
+// Statistics of a set of values, the one module for them: the summary over trials (mean, median,
+// 95 % interval) of the experiments and the error statistics of a trajectory (evo's).
 #pragma once
 
 #include <cstddef>
@@ -22,5 +23,18 @@ struct Summary {
 
 // Non-finite values are left out (count says how many were used); all NaN when none is left.
 Summary Summarize(const std::vector<double>& values);
+
+// Summary of a set of errors, as evo prints it. std is the population standard deviation.
+struct ErrorStatistics {
+  size_t count = 0;
+  double rmse = 0.0;
+  double mean = 0.0;
+  double median = 0.0;  // mean of the two middle values for an even count
+  double std = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+};
+// Throws std::invalid_argument on an empty set.
+ErrorStatistics ComputeStatistics(std::vector<double> values);
 
 }  // namespace slt

@@ -1,5 +1,6 @@
-// Minimal CSV (RFC 4180): fields containing a comma, a quote or a line break are quoted, with
-// quotes doubled. Numbers are written in the shortest form that reads back to the same double.
+// Table text. Minimal CSV (RFC 4180): fields containing a comma, a quote or a line break are
+// quoted, with quotes doubled; numbers are written in the shortest form that reads back to the
+// same double. And the escaping of a cell of a Markdown or LaTeX table.
 #pragma once
 
 #include <string>
@@ -13,6 +14,11 @@ std::string CsvLine(const std::vector<std::string>& fields);  // with the traili
 std::string FormatDouble(double value);
 // Parses FormatDouble's output (and any decimal number); throws std::invalid_argument.
 double ParseDouble(const std::string& text);
+
+// '|' escaped for a Markdown table cell.
+std::string MarkdownEscape(const std::string& text);
+// LaTeX's special characters escaped for text mode.
+std::string TexEscape(const std::string& text);
 
 struct CsvTable {
   std::string where;  // file name, for errors

@@ -1,8 +1,9 @@
-#include "experiments/statistics.h"
+#include "evaluation/statistics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace slt {
 
@@ -34,6 +35,29 @@ Summary Summarize(const std::vector<double>& values) {
   s.median = Quantile(finite, 0.5);
   s.p2_5 = Quantile(finite, 0.025);
   s.p97_5 = Quantile(finite, 0.975);
+  return s;
+}
+
+ErrorStatistics ComputeStatistics(std::vector<double> values) {
+  if (values.empty()) throw std::invalid_argument("statistics of an empty set of errors");
+  ErrorStatistics s;
+  s.count = values.size();
+  const double n = static_cast<double>(values.size());
+  double sum = 0.0, sum_squares = 0.0;
+  for (double v : values) {
+    sum += v;
+    sum_squares += v * v;
+  }
+  s.mean = sum / n;
+  s.rmse = std::sqrt(sum_squares / n);
+  double squared_deviations = 0.0;
+  for (double v : values) squared_deviations += (v - s.mean) * (v - s.mean);
+  s.std = std::sqrt(squared_deviations / n);
+  std::sort(values.begin(), values.end());
+  s.min = values.front();
+  s.max = values.back();
+  const size_t half = values.size() / 2;
+  s.median = values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
   return s;
 }
 
