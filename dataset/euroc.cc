@@ -243,4 +243,45 @@ std::vector<EurocImageEntry> ReadEurocImageList(const std::string& path) {
   return entries;
 }
 
+Trajectory ReadEurocGroundTruth(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) FailAt(path, "cannot read the ground truth");
+  Trajectory trajectory;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    line = Trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    const std::string where = "line " + std::to_string(number) + ": ";
+    std::stringstream fields(line);
+    std::string field;
+    std::getline(fields, field, ',');
+    field = Trim(field);
+    std::int64_t stamp = 0;
+    const auto [stamp_end, stamp_error] = std::from_chars(field.data(), field.data() + field.size(), stamp);
+    if (stamp_error != std::errc() || stamp_end != field.data() + field.size()) {
+      FailAt(path, where + "timestamp is not an integer: '" + field + "'");
+    }
+    double v[7];
+    for (int i = 0; i < 7; ++i) {
+      if (!std::getline(fields, field, ',')) {
+        FailAt(path, where + "expected timestamp, p_RS_R (3) and q_RS (w x y z), got " + std::to_string(i + 1) +
+                         " columns");
+      }
+      field = Trim(field);
+      const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), v[i]);
+      if (error != std::errc() || end != field.data() + field.size() || !std::isfinite(v[i])) {
+        FailAt(path, where + "column " + std::to_string(i + 2) + ": not a finite number: '" + field + "'");
+      }
+    }
+    const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+    if (std::abs(q.norm() - 1.0) > 1e-3) FailAt(path, where + "quaternion q_RS does not have unit norm");
+    const double time = static_cast<double>(stamp) * 1e-9;
+    if (!trajectory.empty() && !(time > trajectory.back().time)) FailAt(path, where + "timestamps must increase");
+    trajectory.push_back({time, Rigid3d::FromQuaternion(q.normalized(), Eigen::Vector3d(v[0], v[1], v[2]))});
+  }
+  return trajectory;
+}
+
 }  // namespace slt
