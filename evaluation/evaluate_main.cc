@@ -3,6 +3,7 @@
 //   evaluate --gt gt.tum --est traj.tum [--align none|se3|sim3] [--max-time-diff S]
 //            [--rpe-delta N] [--rpe-all-pairs] [--gt-format tum|kitti] [--est-format tum|kitti]
 //            [--kitti-frame-period S] [--per-frame] [--out metrics.json]
+//            [--kitti [--kitti-lengths 100,200,...]]
 //
 // Prints the metrics as JSON on stdout (and to --out). Exit codes: 0 success, 1 unreadable or
 // unusable data, 2 bad command line.
@@ -50,6 +51,13 @@ int main(int argc, char** argv) {
   app.add_flag("--rpe-all-pairs", options.rpe_all_pairs, "RPE over every pair (i, i + delta), not only i = k delta");
   app.add_flag("--per-frame", per_frame, "Include the per-frame error curve");
   app.add_option("--out", out_path, "Also write the JSON to this file");
+  bool kitti_metric = false;
+  slt::KittiOdometryOptions kitti_options;
+  app.add_flag("--kitti", kitti_metric,
+               "Also the KITTI odometry metric (\"kitti_odometry\": translation % and rotation deg/m over segments)");
+  app.add_option("--kitti-lengths", kitti_options.segment_lengths_m, "With --kitti: segment lengths in m")
+      ->delimiter(',')
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -80,7 +88,12 @@ int main(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(est_path + " against " + gt_path + ": " + e.what());
     }
-    const nlohmann::json metrics = slt::ToJson(errors, per_frame);
+    nlohmann::json metrics = slt::ToJson(errors, per_frame);
+    if (kitti_metric) {
+      kitti_options.max_time_diff_s = options.max_time_diff_s;
+      kitti_options.Check("--kitti-lengths");
+      metrics["kitti_odometry"] = slt::ToJson(slt::EvaluateKittiOdometry(gt, est, kitti_options));
+    }
     if (!out_path.empty()) slt::WriteJsonFile(out_path, metrics);
     std::cout << metrics.dump(2) << "\n";
     return 0;
