@@ -1,5 +1,5 @@
 // For the tests of config readers. ConfigErrorOf: the message of the ConfigError a call
-// throws. ChangedJsonValues: other values for a JSON leaf, different from it, the plausible ones
+// throws; ExceptionMessageOf, of any exception (readers of other files). ChangedJsonValues: other values for a JSON leaf, different from it, the plausible ones
 // first (fractions stay in (0, 1), counts and scales grow), so that a key read but ignored comes
 // back at its old value and shows.
 #pragma once
@@ -19,6 +19,16 @@ inline std::string ConfigErrorOf(const std::function<void()>& f) {
   try {
     f();
   } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The message of the std::exception that f throws, or "" when it throws none.
+inline std::string ExceptionMessageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
     return e.what();
   }
   return "";

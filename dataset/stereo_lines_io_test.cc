@@ -24,16 +24,6 @@ std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "stereo_lines_io_test_" + std::to_string(::getpid()) + "_" + name;
 }
 
-// The message of any exception f throws, or "" when it throws none.
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
 StereoSequence RandomSequence(int frames, int lines_per_image, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pixel(-10.0, 700.0);
@@ -105,7 +95,7 @@ TEST(StereoLinesIo, StreamedWriterWritesTheSameFileOrNone) {
     writer.Append(written.frames[0]);
     StereoFrame late = written.frames[0];
     late.time -= 1.0;
-    EXPECT_NE(ErrorOf([&] { writer.Append(late); }).find("frames[1].time"), std::string::npos);
+    EXPECT_NE(ExceptionMessageOf([&] { writer.Append(late); }).find("frames[1].time"), std::string::npos);
   }
   EXPECT_FALSE(std::ifstream(abandoned).good());
   EXPECT_FALSE(std::ifstream(abandoned + ".partial").good());

@@ -38,6 +38,21 @@ std::string TimeRange(const Trajectory& trajectory) {
 
 }  // namespace
 
+namespace {
+
+// AssociateByTime; std::invalid_argument when nothing associates.
+std::vector<PosePair> AssociateOrThrow(const Trajectory& gt, const Trajectory& est, double max_time_diff_s) {
+  std::vector<PosePair> pairs = AssociateByTime(gt, est, max_time_diff_s);
+  if (pairs.empty()) {
+    throw std::invalid_argument("no estimate pose is within " + Number(max_time_diff_s) +
+                                " s of a ground-truth pose (ground truth: " + TimeRange(gt) +
+                                "; estimate: " + TimeRange(est) + ")");
+  }
+  return pairs;
+}
+
+}  // namespace
+
 const char* AlignmentName(Alignment alignment) {
   switch (alignment) {
     case Alignment::kNone: return "none";
@@ -141,12 +156,7 @@ TrajectoryErrors EvaluateTrajectory(const Trajectory& gt, const Trajectory& est,
   errors.gt_poses = gt.size();
   errors.est_poses = est.size();
 
-  const std::vector<PosePair> pairs = AssociateByTime(gt, est, options.max_time_diff_s);
-  if (pairs.empty()) {
-    throw std::invalid_argument("no estimate pose is within " + Number(options.max_time_diff_s) +
-                                " s of a ground-truth pose (ground truth: " + TimeRange(gt) +
-                                "; estimate: " + TimeRange(est) + ")");
-  }
+  const std::vector<PosePair> pairs = AssociateOrThrow(gt, est, options.max_time_diff_s);
   const size_t n = pairs.size();
   errors.associated_poses = n;
   if (n < static_cast<size_t>(options.rpe_delta_frames) + 1) {
@@ -215,12 +225,7 @@ void KittiOdometryOptions::Check(const std::string& where) const {
 KittiOdometryErrors EvaluateKittiOdometry(const Trajectory& gt, const Trajectory& est,
                                           const KittiOdometryOptions& options) {
   options.Check();
-  const std::vector<PosePair> pairs = AssociateByTime(gt, est, options.max_time_diff_s);
-  if (pairs.empty()) {
-    throw std::invalid_argument("no estimate pose is within " + Number(options.max_time_diff_s) +
-                                " s of a ground-truth pose (ground truth: " + TimeRange(gt) +
-                                "; estimate: " + TimeRange(est) + ")");
-  }
+  const std::vector<PosePair> pairs = AssociateOrThrow(gt, est, options.max_time_diff_s);
   const size_t n = pairs.size();
   std::vector<double> distance(n, 0.0);
   for (size_t k = 1; k < n; ++k) {

@@ -9,21 +9,13 @@
 #include <functional>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/json_changes.h"
 #include "dataset/euroc.h"
 #include "geometry/distortion.h"
 
 namespace slt {
 namespace {
 namespace fs = std::filesystem;
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // A fresh folder per test and process.
 fs::path TempFolder(const std::string& name) {
@@ -113,60 +105,60 @@ TEST(KittiLayout, ErrorsNameTheFile) {
   {
     const fs::path dir = KittiFolder("kitti_gap", 3);
     fs::remove(dir / "image_0" / "000001.png");
-    const std::string error = ErrorOf([&] { OpenStereoImages(dir.string()); });
+    const std::string error = ExceptionMessageOf([&] { OpenStereoImages(dir.string()); });
     EXPECT_NE(error.find((dir / "image_0" / "000001.png").string() + ": image missing"), std::string::npos) << error;
   }
   {
     const fs::path dir = KittiFolder("kitti_count", 3);
     fs::remove(dir / "image_1" / "000002.png");
-    const std::string error = ErrorOf([&] { OpenStereoImages(dir.string()); });
+    const std::string error = ExceptionMessageOf([&] { OpenStereoImages(dir.string()); });
     EXPECT_NE(error.find((dir / "image_1").string() + ": 2 images, but"), std::string::npos) << error;
   }
   {
     const fs::path dir = KittiFolder("kitti_png", 3);
     WriteText(dir / "image_1" / "000002.png", "not a png");
     const auto source = OpenStereoImages(dir.string());
-    const std::string error = ErrorOf([&] { source->Read(2); });
+    const std::string error = ExceptionMessageOf([&] { source->Read(2); });
     EXPECT_NE(error.find((dir / "image_1" / "000002.png").string() + ": cannot read the image"), std::string::npos)
         << error;
   }
   {
     const fs::path dir = KittiFolder("kitti_size", 2);
     cv::imwrite((dir / "image_1" / "000001.png").string(), Pattern(1, 1, 20, 16));
-    const std::string error = ErrorOf([&] { OpenStereoImages(dir.string())->Read(1); });
+    const std::string error = ExceptionMessageOf([&] { OpenStereoImages(dir.string())->Read(1); });
     EXPECT_NE(error.find("000001.png: image is 20 x 16, the calibration says 24 x 16"), std::string::npos) << error;
   }
   {
     const fs::path dir = KittiFolder("kitti_calib", 2);
     const std::string calib = (dir / "calib.txt").string();
     WriteText(calib, "P0: 700 0 12 0 0 700 8 0 0 0 1 0\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), calib + ": missing key 'P1:' (nor two lines of 12 numbers, P0 and P1)");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), calib + ": missing key 'P1:' (nor two lines of 12 numbers, P0 and P1)");
     WriteText(calib, "700 0 12 0 0 700 8 0 0 0 1 0\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }),
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }),
               calib + ": missing key 'P0:' (nor two lines of 12 numbers, P0 and P1)");
     WriteText(calib, "P0: 700 0 12 0 0 700 8 0 0 0 1 0\nP1: 700 0 12 -350 0 700 8 0 0 0 1\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), calib + ": key 'P1': expected 12 numbers");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), calib + ": key 'P1': expected 12 numbers");
     WriteText(calib, "P0: 700 0 12 0 0 700 8 0 0 0 1 0\nP1: 700 0 12 0 0 700 8 0 0 0 1 0\n");
-    EXPECT_NE(ErrorOf([&] { OpenStereoImages(dir.string()); }).find(calib + ": unusable stereo rig"), std::string::npos);
+    EXPECT_NE(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }).find(calib + ": unusable stereo rig"), std::string::npos);
     fs::remove(calib);
     EXPECT_THROW(OpenStereoImages(dir.string(), DatasetLayout::kKitti), std::runtime_error);
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string(), DatasetLayout::kKitti); }), calib + ": calibration missing");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string(), DatasetLayout::kKitti); }), calib + ": calibration missing");
   }
   {
     const fs::path dir = KittiFolder("kitti_times", 3);
     const std::string times = (dir / "times.txt").string();
     WriteText(times, "0\n0.2\n0.1\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), times + ": line 3: times must increase");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), times + ": line 3: times must increase");
     WriteText(times, "0\n0.1\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), times + ": 2 times for 3 stereo pairs");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), times + ": 2 times for 3 stereo pairs");
     WriteText(times, "0\n0.1\nx\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), times + ": line 3: not a number: 'x'");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), times + ": line 3: not a number: 'x'");
   }
   {
     const fs::path dir = KittiFolder("kitti_poses", 3);
     const std::string poses = (dir / "poses.txt").string();
     WriteText(poses, "1 0 0 0 0 1 0 0 0 0 1 0\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), poses + ": 1 poses for 3 stereo pairs");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), poses + ": 1 poses for 3 stereo pairs");
   }
 }
 
@@ -224,7 +216,7 @@ TEST(AslLayout, PairsByTimestampAndConvertsTheGroundTruthToTheLeftCamera) {
   // A TUM ground truth given explicitly.
   WriteTumTrajectory((dir / "body.tum").string(), world_from_body);
   EXPECT_EQ(OpenStereoImages(dir.string(), DatasetLayout::kAsl, (dir / "body.tum").string())->ground_truth().size(), 2u);
-  EXPECT_NE(ErrorOf([&] { OpenStereoImages(dir.string(), DatasetLayout::kAsl, (dir / "none.tum").string()); })
+  EXPECT_NE(ExceptionMessageOf([&] { OpenStereoImages(dir.string(), DatasetLayout::kAsl, (dir / "none.tum").string()); })
                 .find("none.tum: ground truth file missing"),
             std::string::npos);
 }
@@ -233,7 +225,7 @@ TEST(AslLayout, ErrorsNameTheFile) {
   {
     const fs::path dir = AslFolder("asl_missing");
     fs::remove(dir / "mav0" / "cam1" / "data" / "1050000000.png");
-    EXPECT_NE(ErrorOf([&] { OpenStereoImages(dir.string()); })
+    EXPECT_NE(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); })
                   .find((dir / "mav0" / "cam1" / "data" / "1050000000.png").string() + ": image missing"),
               std::string::npos);
   }
@@ -241,19 +233,19 @@ TEST(AslLayout, ErrorsNameTheFile) {
     const fs::path dir = AslFolder("asl_order");
     const std::string csv = (dir / "mav0" / "cam0" / "data.csv").string();
     WriteText(csv, "#timestamp [ns],filename\n1050000000,1050000000.png\n1000000000,1000000000.png\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }), csv + ": line 3: timestamps must increase");
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }), csv + ": line 3: timestamps must increase");
   }
   {
     const fs::path dir = AslFolder("asl_nothing_common");
     const std::string csv = (dir / "mav0" / "cam1" / "data.csv").string();
     WriteText(csv, "#timestamp [ns],filename\n7,7.png\n");
-    EXPECT_NE(ErrorOf([&] { OpenStereoImages(dir.string()); }).find(csv + ": no timestamp in common"), std::string::npos);
+    EXPECT_NE(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }).find(csv + ": no timestamp in common"), std::string::npos);
   }
   {
     const fs::path dir = AslFolder("asl_png");
     WriteText(dir / "mav0" / "cam0" / "data" / "1100000000.png", "garbage");
     const auto source = OpenStereoImages(dir.string());
-    EXPECT_NE(ErrorOf([&] { source->Read(2); }).find("1100000000.png: cannot read the image"), std::string::npos);
+    EXPECT_NE(ExceptionMessageOf([&] { source->Read(2); }).find("1100000000.png: cannot read the image"), std::string::npos);
   }
   {
     const fs::path dir = AslFolder("asl_yaml");
@@ -262,19 +254,19 @@ TEST(AslLayout, ErrorsNameTheFile) {
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text.replace(text.find("intrinsics: ["), 13, "intrinsics: [x, ");
     WriteText(yaml, text);
-    const std::string error = ErrorOf([&] { OpenStereoImages(dir.string()); });
+    const std::string error = ExceptionMessageOf([&] { OpenStereoImages(dir.string()); });
     EXPECT_NE(error.find(yaml + ": key 'intrinsics'"), std::string::npos) << error;
     fs::remove(yaml);
-    EXPECT_NE(ErrorOf([&] { OpenStereoImages(dir.string()); }).find(yaml + ": cannot read"), std::string::npos);
+    EXPECT_NE(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }).find(yaml + ": cannot read"), std::string::npos);
   }
   {
     const fs::path dir = AslFolder("asl_gt");
     const std::string csv = (dir / "mav0" / "state_groundtruth_estimate0" / "data.csv").string();
     WriteText(csv, "#t,x,y,z,qw,qx,qy,qz\n1000000000,0,0,0,1,0,0,0\n1100000000,0,0,0,1,0\n");
-    EXPECT_EQ(ErrorOf([&] { OpenStereoImages(dir.string()); }),
+    EXPECT_EQ(ExceptionMessageOf([&] { OpenStereoImages(dir.string()); }),
               csv + ": line 3: expected timestamp, p_RS_R (3) and q_RS (w x y z), got 6 columns");
   }
-  EXPECT_NE(ErrorOf([&] { OpenStereoImages(TempFolder("empty").string()); }).find("neither the ASL/EuRoC layout"),
+  EXPECT_NE(ExceptionMessageOf([&] { OpenStereoImages(TempFolder("empty").string()); }).find("neither the ASL/EuRoC layout"),
             std::string::npos);
 }
 
