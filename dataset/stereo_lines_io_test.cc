@@ -95,7 +95,7 @@ TEST(StereoLinesIo, StreamedWriterWritesTheSameFileOrNone) {
     writer.Append(written.frames[0]);
     StereoFrame late = written.frames[0];
     late.time -= 1.0;
-    EXPECT_NE(ExceptionMessageOf([&] { writer.Append(late); }).find("frames[1].time"), std::string::npos);
+    EXPECT_NE(ConfigErrorOf([&] { writer.Append(late); }).find("frames[1].time"), std::string::npos);
   }
   EXPECT_FALSE(std::ifstream(abandoned).good());
   EXPECT_FALSE(std::ifstream(abandoned + ".partial").good());

@@ -60,6 +60,57 @@ Eigen::Vector2d ProjectedGroundTruth::EndpointDistances(const Segment2d& segment
   return {std::abs(p.normal.dot(segment.head<2>() - p.a)), std::abs(p.normal.dot(segment.tail<2>() - p.a))};
 }
 
+ProjectedGroundTruth ProjectedGroundTruthAt(const SimulatedSequence& sequence, int frame, int camera,
+                                            const AuditCriteria& criteria) {
+  ProjectedGroundTruth projected(sequence.lines, criteria);
+  const Rigid3d left_from_world = sequence.ground_truth.at(frame).world_from_cam.Inverse();
+  if (camera == 0) {
+    projected.Project(left_from_world, sequence.true_rig.left);
+  } else {
+    projected.Project(sequence.true_rig.right_from_left * left_from_world, sequence.true_rig.right);
+  }
+  return projected;
+}
+
+namespace {
+const nlohmann::json kVisibleTruth = {{"clip_to_image", true}, {"occlusion", true}};
+}  // namespace
+
+nlohmann::json RenderedRoomConfig(int frames, bool euroc_size) {
+  nlohmann::json config = {{"frames", frames},
+                           {"scene", {{"type", "room"}}},
+                           {"motion", {{"type", "loop"}}},
+                           {"noise", {{"endpoint_px", 0.0}}},
+                           {"observation", kVisibleTruth}};
+  if (euroc_size) {
+    const nlohmann::json camera = {{"fx", 458.654}, {"fy", 458.654}, {"cx", 367.215}, {"cy", 248.375}};
+    config["rig"] = {{"width", 752},
+                     {"height", 480},
+                     {"left", camera},
+                     {"right", camera},
+                     {"right_from_left", {{"R", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {"t", {-0.11, 0, 0}}}}};
+  }
+  return config;
+}
+
+nlohmann::json RenderedCorridorConfig(int frames) {
+  return {{"frames", frames},
+          {"scene", {{"type", "corridor"}}},
+          {"motion", {{"type", "forward"}, {"forward", {{"step_m", 0.01}}}}},
+          {"noise", {{"endpoint_px", 0.0}}},
+          {"observation", kVisibleTruth}};
+}
+
+PairVerdict JudgeStereoPair(const ProjectedGroundTruth& left_truth, const ProjectedGroundTruth& right_truth,
+                            const Segment2d& left, const Segment2d& right, std::vector<int>* common) {
+  std::vector<int> under_left, under_right;
+  left_truth.LinesUnder(left, &under_left);
+  right_truth.LinesUnder(right, &under_right);
+  Intersect(under_left, under_right, common);
+  if (!common->empty()) return PairVerdict::kCorrect;
+  return under_left.empty() && under_right.empty() ? PairVerdict::kUnjudged : PairVerdict::kWrong;
+}
+
 void ScoreDetections(const ProjectedGroundTruth& projected, const std::vector<LineObservation>& visible,
                      const std::vector<ImageLine>& detections, double min_gt_length_px, DetectionScore* score) {
   ++score->images;
@@ -87,33 +138,29 @@ void ScoreDetections(const ProjectedGroundTruth& projected, const std::vector<Li
 }
 
 FrontEndAudit::FrontEndAudit(const SimulatedSequence& sequence, const AuditCriteria& criteria)
-    : sequence_(sequence), projected_{ProjectedGroundTruth(sequence.lines, criteria),
+    : sequence_(sequence), criteria_(criteria), projected_{ProjectedGroundTruth(sequence.lines, criteria),
                                       ProjectedGroundTruth(sequence.lines, criteria)} {}
 
 void FrontEndAudit::AddFrame(int k, const StereoFrontEnd& front_end, const StereoFrame& frame) {
-  const Rigid3d left_from_world = sequence_.ground_truth.at(k).world_from_cam.Inverse();
-  projected_[0].Project(left_from_world, sequence_.true_rig.left);
-  projected_[1].Project(sequence_.true_rig.right_from_left * left_from_world, sequence_.true_rig.right);
+  for (int c = 0; c < 2; ++c) projected_[c] = ProjectedGroundTruthAt(sequence_, k, c, criteria_);
   const FrontEndFrameStats& stats = front_end.last_stats();
   if (stats.detected) {
     for (const StereoMatch& m : front_end.last_matches()) {
-      projected_[0].LinesUnder(front_end.last_detections(0)[m.left].segment, &under_left_);
-      projected_[1].LinesUnder(front_end.last_detections(1)[m.right].segment, &under_right_);
-      Intersect(under_left_, under_right_, &common_);
+      const PairVerdict verdict = JudgeStereoPair(projected_[0], projected_[1], front_end.last_detections(0)[m.left].segment,
+                                                  front_end.last_detections(1)[m.right].segment, &common_);
       ++result_.matches;
-      if (!common_.empty()) ++result_.matches_correct;
+      if (verdict == PairVerdict::kCorrect) ++result_.matches_correct;
+      if (verdict == PairVerdict::kUnjudged) ++result_.matches_unjudged;
     }
   }
   // Tracks: the lines of the output frame (left and right hold the same ids in the same order).
   for (auto& [id, track] : tracks_) track.seen = false;
   for (size_t i = 0; i < frame.left.size(); ++i) {
     const std::int64_t id = frame.left[i].id;
-    projected_[0].LinesUnder(frame.left[i].segment, &under_left_);
-    projected_[1].LinesUnder(frame.right[i].segment, &under_right_);
-    Intersect(under_left_, under_right_, &common_);
+    JudgeStereoPair(projected_[0], projected_[1], frame.left[i].segment, frame.right[i].segment, &common_);
     auto it = tracks_.find(id);
     if (it == tracks_.end()) {
-      it = tracks_.emplace(id, Track{common_, 0, false}).first;
+      it = tracks_.emplace(id, Track{common_, 0, false, !common_.empty()}).first;
       ++result_.added;
       if (!common_.empty()) ++result_.added_correct;
     } else {
@@ -141,10 +188,14 @@ void FrontEndAudit::CloseTrack(std::int64_t id) {
   const auto it = tracks_.find(id);
   if (it == tracks_.end()) return;
   if (it->second.frames >= 2) {
-    ++result_.tracks;
-    result_.track_frames += it->second.frames;
-    result_.longest_track = std::max(result_.longest_track, it->second.frames);
-    if (!it->second.lines.empty()) ++result_.tracks_correct;
+    if (!it->second.judged) {
+      ++result_.tracks_unjudged;
+    } else {
+      ++result_.tracks;
+      result_.track_frames += it->second.frames;
+      result_.longest_track = std::max(result_.longest_track, it->second.frames);
+      if (!it->second.lines.empty()) ++result_.tracks_correct;
+    }
   }
   tracks_.erase(it);
 }

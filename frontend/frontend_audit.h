@@ -8,11 +8,15 @@
 //   the angle between the segment and P <= max_angle_deg,
 //   both endpoints within max_distance_px of P's line, and
 //   the segment overlapping P (their extents along P's line intersect).
-// A stereo match is correct when its two segments lie on a common L; a track when one L is
-// under both its segments in every frame of its life.
+// A stereo match is correct when its two segments lie on a common L, wrong when they lie on no
+// common L but at least one lies on some L, and not judged when neither lies on any (a line of
+// a texture or of a surface's shading that the ground truth does not list: whether its two
+// segments are the same line cannot be told). A track is judged when its first pair lies on a
+// common L, and then correct when one L is under both its segments in every frame of its life.
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "dataset/stereo_sequence.h"
@@ -50,6 +54,25 @@ class ProjectedGroundTruth {
   std::vector<Projected> projected_;
 };
 
+// The ground truth of a simulated sequence projected into `camera` (0 = left, 1 = right) at
+// `frame`, with the rig the images were made with.
+ProjectedGroundTruth ProjectedGroundTruthAt(const SimulatedSequence& sequence, int frame, int camera,
+                                            const AuditCriteria& criteria = {});
+
+// Simulation configs of the rendered sequences the front end is measured on (measure_frontend,
+// frontend_benchmark, tests): the visible ground truth (clipped, occlusion on), noise-free.
+//   room:     the room loop (motion.loop defaults), at 752 x 480 with EuRoC's rectified focal
+//             length and 0.11 m baseline when `euroc_size`, else the default 640 x 480 rig;
+//   corridor: the corridor walked forward 1 cm per frame, 640 x 480.
+nlohmann::json RenderedRoomConfig(int frames, bool euroc_size);
+nlohmann::json RenderedCorridorConfig(int frames);
+
+// The verdict on a stereo pair of segments (see above); `common` receives the ground-truth
+// lines under both, ascending.
+enum class PairVerdict { kCorrect, kWrong, kUnjudged };
+PairVerdict JudgeStereoPair(const ProjectedGroundTruth& left_truth, const ProjectedGroundTruth& right_truth,
+                            const Segment2d& left, const Segment2d& right, std::vector<int>* common);
+
 struct DetectionScore {
   int images = 0;
   int gt_segments = 0;      // visible ground-truth segments at least min_gt_length_px long
@@ -81,8 +104,15 @@ class FrontEndAudit {
 
   struct Result {
     int matches = 0, matches_correct = 0;   // every stereo match of the detection frames
+    int matches_unjudged = 0;               // ... on no ground-truth line in either image
     int added = 0, added_correct = 0;       // the new lines among them (what the tracker gets)
-    int tracks = 0, tracks_correct = 0;     // lines followed over >= 2 frames, judged at their end
+    int tracks = 0, tracks_correct = 0;     // judged lines followed over >= 2 frames, at their end
+    int tracks_unjudged = 0;                // lines followed over >= 2 frames, not judged
+    double MatchPrecision() const {
+      const int judged = matches - matches_unjudged;
+      return judged > 0 ? static_cast<double>(matches_correct) / judged : 0.0;
+    }
+    double TrackPrecision() const { return tracks > 0 ? static_cast<double>(tracks_correct) / tracks : 0.0; }
     long track_frames = 0;                  // line-frames of those tracks
     int longest_track = 0;                  // frames
     double endpoint_sq_sum = 0.0;           // perpendicular endpoint distances of output lines on the truth
@@ -94,15 +124,17 @@ class FrontEndAudit {
  private:
   void CloseTrack(std::int64_t id);
   const SimulatedSequence& sequence_;
+  AuditCriteria criteria_;
   ProjectedGroundTruth projected_[2];
   struct Track {
     std::vector<int> lines;  // ground-truth lines under the track so far (intersection)
     int frames = 0;
     bool seen = false;
+    bool judged = false;
   };
   std::map<std::int64_t, Track> tracks_;
   Result result_;
-  std::vector<int> under_left_, under_right_, common_;
+  std::vector<int> common_;
 };
 
 }  // namespace slt

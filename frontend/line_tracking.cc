@@ -87,18 +87,62 @@ void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& nex
                            cv::Size(options_.window_px, options_.window_px), options_.pyramid_levels, criteria);
 }
 
+LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old, int sampled,
+                           const std::vector<Eigen::Vector2d>& points, const std::vector<double>& positions,
+                           Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace) {
+  LineRefit fit;
+  const int needed = std::max(3, static_cast<int>(std::ceil(options.min_inlier_fraction * sampled)));
+  if (static_cast<int>(points.size()) < needed) return fit;
+  LineEstimator estimator;
+  estimator.points = &points;
+  estimator.threshold_sq = options.inlier_px * options.inlier_px;
+  RansacResult<Eigen::Vector3d>& result = *workspace;
+  ransac->Run(estimator, RansacOptions{50, 0.999}, {}, &result);
+  if (!result.success || static_cast<int>(result.inliers.size()) < needed) return fit;
+  fit.inliers = static_cast<int>(result.inliers.size());
+  const Eigen::Vector3d line = result.model;
+  double sq = 0.0;
+  for (int i : result.inliers) {
+    const double r = line.head<2>().dot(points[i]) + line.z();
+    sq += r * r;
+  }
+  fit.rms_px = std::sqrt(sq / result.inliers.size());
+  if (fit.rms_px > options.max_rms_px) return fit;
+  // Direction along the old segment's orientation, and a point on the new line.
+  const Eigen::Vector2d a = old.head<2>();
+  const double length = (old.tail<2>() - a).norm();
+  Eigen::Vector2d dir(line.y(), -line.x());
+  if (dir.dot(old.tail<2>() - a) < 0) dir = -dir;
+  const Eigen::Vector2d base = -line.z() * line.head<2>();
+  // t' = alpha t + beta by least squares over the inliers.
+  double st = 0, stt = 0, su = 0, stu = 0;
+  for (int i : result.inliers) {
+    const double t = positions[i], u = dir.dot(points[i] - base);
+    st += t;
+    stt += t * t;
+    su += u;
+    stu += t * u;
+  }
+  const double m = static_cast<double>(result.inliers.size());
+  const double det = m * stt - st * st;
+  if (det <= 1e-9) return fit;
+  const double alpha = (m * stu - st * su) / det, beta = (su - alpha * st) / m;
+  if (!(alpha > 0.5 && alpha < 2.0)) return fit;
+  const Eigen::Vector2d p = base + beta * dir, q = base + (alpha * length + beta) * dir;
+  fit.segment = Segment2d(p.x(), p.y(), q.x(), q.y());
+  fit.ok = true;
+  return fit;
+}
+
 void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok) {
   const int n = static_cast<int>(segments_.size());
   tracked->assign(n, Segment2d::Zero());
   ok->assign(n, 0);
-  const RansacOptions ransac_options{50, 0.999};
-  RansacResult<Eigen::Vector3d> result;
   double rms_sum = 0.0;
   int kept = 0;
   for (int s = 0; s < n; ++s) {
     const Segment2d& old = segments_[s];
-    const Eigen::Vector2d a = old.head<2>();
-    const double length = (old.tail<2>() - a).norm();
+    const double length = (old.tail<2>() - old.head<2>()).norm();
     const int k = first_point_[s + 1] - first_point_[s];
     data_.clear();
     positions_.clear();
@@ -108,46 +152,13 @@ void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* track
       data_.emplace_back(tracked_points_[p].x, tracked_points_[p].y);
       positions_.push_back(length * i / (k - 1));
     }
-    const int needed = std::max(3, static_cast<int>(std::ceil(options_.min_inlier_fraction * k)));
-    if (static_cast<int>(data_.size()) < needed) continue;
-    LineEstimator estimator;
-    estimator.points = &data_;
-    estimator.threshold_sq = options_.inlier_px * options_.inlier_px;
-    ransac_.Run(estimator, ransac_options, {}, &result);
-    if (!result.success || static_cast<int>(result.inliers.size()) < needed) continue;
-    const Eigen::Vector3d line = result.model;
-    double sq = 0.0;
-    for (int i : result.inliers) {
-      const double r = line.head<2>().dot(data_[i]) + line.z();
-      sq += r * r;
-    }
-    const double rms = std::sqrt(sq / result.inliers.size());
-    if (rms > options_.max_rms_px) continue;
-    // Direction along the old segment's orientation, and a point on the new line.
-    Eigen::Vector2d dir(line.y(), -line.x());
-    if (dir.dot(old.tail<2>() - a) < 0) dir = -dir;
-    const Eigen::Vector2d base = -line.z() * line.head<2>();
-    // t' = alpha t + beta by least squares over the inliers.
-    double st = 0, stt = 0, su = 0, stu = 0;
-    for (int i : result.inliers) {
-      const double t = positions_[i], u = dir.dot(data_[i] - base);
-      st += t;
-      stt += t * t;
-      su += u;
-      stu += t * u;
-    }
-    const double m = static_cast<double>(result.inliers.size());
-    const double det = m * stt - st * st;
-    if (det <= 1e-9) continue;
-    const double alpha = (m * stu - st * su) / det, beta = (su - alpha * st) / m;
-    if (!(alpha > 0.5 && alpha < 2.0)) continue;
-    const Eigen::Vector2d p = base + beta * dir, q = base + (alpha * length + beta) * dir;
-    Segment2d out(p.x(), p.y(), q.x(), q.y());
-    if (!ClipSegmentToImage(width, height, &out)) continue;
-    if ((out.tail<2>() - out.head<2>()).norm() < options_.min_length_px) continue;
-    (*tracked)[s] = out;
+    LineRefit fit = RefitTrackedLine(options_, old, k, data_, positions_, &ransac_, &result_);
+    if (!fit.ok) continue;
+    if (!ClipSegmentToImage(width, height, &fit.segment)) continue;
+    if ((fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) continue;
+    (*tracked)[s] = fit.segment;
     (*ok)[s] = 1;
-    rms_sum += rms;
+    rms_sum += fit.rms_px;
     ++kept;
   }
   last_mean_rms_ = kept > 0 ? rms_sum / kept : 0.0;

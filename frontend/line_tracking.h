@@ -27,6 +27,19 @@ namespace slt {
 
 using ImagePyramid = std::vector<cv::Mat>;
 
+// The refit of one segment (stage 2 above, before clipping): ok = false when it is lost.
+struct LineRefit {
+  bool ok = false;
+  Segment2d segment = Segment2d::Zero();  // the new segment, oriented as the old one
+  int inliers = 0;
+  double rms_px = 0.0;  // RMS distance of the inliers to the fitted line
+};
+// `points` are the tracked positions of those of the `sampled` sample points of `old` that the
+// flow kept, `positions` their distances from old's first endpoint along it.
+LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old, int sampled,
+                           const std::vector<Eigen::Vector2d>& points, const std::vector<double>& positions,
+                           Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace);
+
 class LineFlowTracker {
  public:
   explicit LineFlowTracker(const TrackingOptions& options, std::uint64_t seed = 1);
@@ -45,6 +58,7 @@ class LineFlowTracker {
  private:
   TrackingOptions options_;
   Ransac<Eigen::Vector3d> ransac_;
+  RansacResult<Eigen::Vector3d> result_;
   std::vector<Segment2d> segments_;
   std::vector<int> first_point_;  // per segment, index of its first point; size n + 1
   std::vector<cv::Point2f> points_, tracked_points_;

@@ -1,0 +1,227 @@
+// measure_frontend: the image front end against the ground truth of rendered sequences
+// (issue 18's numbers; docs/frontend.md quotes the output in results/frontend/).
+//
+//   measure_frontend [--frames N] [--step K] [--method NAME] [--out DIR]
+//
+// Two scenes are rendered in memory (render/, default image settings: noise, defocus blur,
+// vignetting, exposure changes): the room loop at 752 x 480 (EuRoC's image size and focal
+// length) and the corridor walked forward at 640 x 480, N frames each.
+//
+// 1. detectors.md: every detector of frontend/line_detection.h, with the front end's merging,
+//    length and contrast filters, on frames 0, K, 2K, ... of both (both cameras): recall = the
+//    fraction of the visible ground-truth segments at least 40 px long that a detection lies on
+//    (within 2 px and 2 deg, frontend_audit.h), precision = the fraction of detections that lie
+//    on some ground-truth segment, the RMS perpendicular endpoint error of those, and the
+//    single-thread time per image.
+// 2. sequences.md: the front end paired with the tracker over each whole sequence: stereo
+//    matches and temporal tracks correct (same 3-D segment; frontend_audit.h), endpoint error of
+//    the output lines, the tracker's ATE from the images against the same tracker on the perfect
+//    observations of the sequence (the visible ground-truth edges, noise-free) and on those
+//    observations with Gaussian endpoint noise at the front end's measured RMS endpoint error,
+//    and the per-stage times of steady and new-reference frames.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/json_reader.h"
+#include "evaluation/metrics.h"
+#include "frontend/frontend_audit.h"
+#include "frontend/image_tracking.h"
+#include "render/sequence_renderer.h"
+
+namespace slt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct MeasuredScene {
+  std::string name;
+  nlohmann::json config;
+};
+
+std::vector<MeasuredScene> Scenes(int frames) {
+  return {{"room 752x480 (loop)", RenderedRoomConfig(frames, true)},
+          {"corridor 640x480 (forward)", RenderedCorridorConfig(frames)}};
+}
+
+std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
+std::string Format(const char* format, ...) {
+  char buffer[1024];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  return buffer;
+}
+
+std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step) {
+  std::string table =
+      "| scene | detector | images | GT segments >= 40 px | recall | precision | endpoint RMS, px | segments per image "
+      "| ms per image |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const MeasuredScene& scene : scenes) {
+    const SimulationConfig config = SimulationConfigFromJson(scene.config, "measure_frontend");
+    const SimulatedSequence sequence = Simulate(config);
+    const SequenceRenderer renderer(sequence, config);
+    std::vector<cv::Mat> images;
+    std::vector<std::pair<int, int>> which;
+    for (int k = 0; k < config.frames; k += step) {
+      for (int c = 0; c < 2; ++c) {
+        images.push_back(renderer.Image(k, c));
+        which.emplace_back(k, c);
+      }
+    }
+    for (const auto& [type, name] : LineDetectorNames()) {
+      DetectionOptions options;
+      options.detector = type;
+      const std::unique_ptr<LineDetector> detector = MakeLineDetector(type);
+      DetectionScore score;
+      for (size_t i = 0; i < images.size(); ++i) {
+        const auto t0 = Clock::now();
+        const std::vector<ImageLine> lines = DetectLines(*detector, options, images[i]);
+        score.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+        const auto [k, c] = which[i];
+        const StereoFrame& frame = sequence.sequence.frames[k];
+        ScoreDetections(ProjectedGroundTruthAt(sequence, k, c), c == 0 ? frame.left : frame.right, lines, 40.0, &score);
+      }
+      table += Format("| %s | %s | %d | %d | %.3f | %.3f | %.2f | %.0f | %.1f |\n", scene.name.c_str(), name,
+                      score.images, score.gt_segments, score.Recall(), score.Precision(), score.EndpointRms(),
+                      static_cast<double>(score.detections) / score.images, 1e3 * score.seconds / score.images);
+      std::fprintf(stderr, "measure_frontend: %s, %s: recall %.3f\n", scene.name.c_str(), name, score.Recall());
+    }
+  }
+  return table;
+}
+
+double Ate(const SimulatedSequence& sequence, const Trajectory& estimate) {
+  return EvaluateTrajectory(sequence.ground_truth, estimate, EvaluationOptions()).ate_trans_m.rmse;
+}
+
+Trajectory TrackObservations(const std::string& method, const StereoSequence& observations) {
+  const std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
+  Trajectory trajectory;
+  const std::vector<TrackedFrame> run = TrackSequence(*tracker, observations);
+  for (size_t k = 0; k < run.size(); ++k) {
+    trajectory.push_back({observations.frames[k].time, run[k].output.cam_from_world.Inverse()});
+  }
+  return trajectory;
+}
+
+std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::string& method, const FrontEndOptions& options) {
+  std::string table =
+      "| scene | frames | path, m | detection frames | new references | lost | stereo matches | not judged | correct "
+      "(of judged) | tracks (>= 2 frames, judged) | not judged | correct | mean track length | endpoint RMS, px | ATE images, mm | ATE perfect, mm | ATE "
+      "noisy (same RMS), mm | ratio images / perfect | ratio images / noisy |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  std::string times =
+      "| scene | steady frames | track, ms | filter, ms | steady front end, ms | new-reference frames | detect, ms | "
+      "describe, ms | match, ms | track, ms | filter, ms | new-reference front end, ms | MSLD per line, us | lines "
+      "described per frame | tracker, ms |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const MeasuredScene& scene : scenes) {
+    const SimulationConfig config = SimulationConfigFromJson(scene.config, "measure_frontend");
+    const SimulatedSequence sequence = Simulate(config);
+    const SequenceRenderer renderer(sequence, config);
+    const std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
+    StereoFrontEnd front_end(options, sequence.true_rig);
+    ImageTracker image_tracker(front_end, *tracker, sequence.true_rig);
+    FrontEndAudit audit(sequence);
+    Trajectory from_images;
+    FrontEndStageTimes steady, detecting;
+    int steady_frames = 0, detection_frames = 0, new_references = 0, lost = 0;
+    long described = 0;
+    double tracker_seconds = 0.0;
+    for (int k = 0; k < config.frames; ++k) {
+      const cv::Mat left = renderer.Image(k, 0), right = renderer.Image(k, 1);
+      const double time = sequence.sequence.frames[k].time;
+      const ImageTrackingStep step = image_tracker.Step(left, right, time);
+      audit.AddFrame(k, front_end, *step.frame);
+      const FrontEndFrameStats& stats = front_end.last_stats();
+      if (stats.detected) {
+        detecting += stats.times;
+        ++detection_frames;
+        described += stats.detected_left + stats.detected_right;
+      } else {
+        steady += stats.times;
+        ++steady_frames;
+      }
+      tracker_seconds += step.tracker_seconds;
+      if (k > 0 && step.output.status == TrackingStatus::kNewReference) ++new_references;
+      if (step.output.status == TrackingStatus::kLost) ++lost;
+      from_images.push_back({time, step.output.cam_from_world.Inverse()});
+    }
+    audit.Finish();
+    const FrontEndAudit::Result& r = audit.result();
+    double path = 0.0;
+    for (size_t k = 1; k < sequence.ground_truth.size(); ++k) {
+      path += (sequence.ground_truth[k].world_from_cam.translation - sequence.ground_truth[k - 1].world_from_cam.translation).norm();
+    }
+    const double ate_images = Ate(sequence, from_images);
+    const double ate_perfect = Ate(sequence, TrackObservations(method, sequence.sequence));
+    // The same observations with Gaussian endpoint noise of the front end's RMS error (the
+    // noise stream differs from the scene's and the motion's: same lines, same poses).
+    SimulationConfig noisy_config = config;
+    noisy_config.noise.model = NoiseModel::kGaussian;
+    noisy_config.noise.endpoint_px = r.EndpointRms();
+    const double ate_noisy = Ate(sequence, TrackObservations(method, Simulate(noisy_config).sequence));
+    table += Format("| %s | %d | %.2f | %d | %d | %d | %d | %d | %.4f | %d | %d | %.4f | %.1f | %.3f | %.2f | %.2f | %.2f "
+                    "| %.2f | %.2f |\n",
+                    scene.name.c_str(), config.frames, path, detection_frames, new_references, lost, r.matches,
+                    r.matches_unjudged, r.MatchPrecision(), r.tracks, r.tracks_unjudged, r.TrackPrecision(),
+                    r.tracks ? static_cast<double>(r.track_frames) / r.tracks : 0.0, r.EndpointRms(), 1e3 * ate_images,
+                    1e3 * ate_perfect, 1e3 * ate_noisy, ate_images / ate_perfect, ate_images / ate_noisy);
+    const auto ms = [](double s, int n) { return n ? 1e3 * s / n : 0.0; };
+    times += Format("| %s | %d | %.2f | %.2f | %.2f | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.0f | %.2f |\n",
+                    scene.name.c_str(), steady_frames, ms(steady.track, steady_frames), ms(steady.filter, steady_frames),
+                    ms(steady.Total(), steady_frames), detection_frames, ms(detecting.detect, detection_frames),
+                    ms(detecting.describe, detection_frames), ms(detecting.match, detection_frames),
+                    ms(detecting.track, detection_frames), ms(detecting.filter, detection_frames),
+                    ms(detecting.Total(), detection_frames), described ? 1e6 * detecting.describe / described : 0.0,
+                    detection_frames ? static_cast<double>(described) / detection_frames : 0.0,
+                    ms(tracker_seconds, config.frames));
+    std::fprintf(stderr, "measure_frontend: %s: ATE images %.2f mm, perfect %.2f mm, noisy %.2f mm\n",
+                 scene.name.c_str(), 1e3 * ate_images, 1e3 * ate_perfect, 1e3 * ate_noisy);
+  }
+  return table + "\nPer-stage times (wall clock inside the run, single thread):\n\n" + times;
+}
+
+}  // namespace
+}  // namespace slt
+
+int main(int argc, char** argv) {
+  using namespace slt;
+  CLI::App app{"Measure the image front end on rendered sequences (results/frontend/)."};
+  int frames = 200, step = 20;
+  std::string method = "trifocal_line_ekf", out, config_path;
+  bool skip_detectors = false;
+  app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
+  app.add_option("--step", step, "Detector comparison on every step-th frame")->check(CLI::Range(1, 100000));
+  app.add_option("--method", method, "Tracker paired with the front end");
+  app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
+  app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
+  app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    cv::setNumThreads(1);
+    const FrontEndOptions options =
+        config_path.empty() ? FrontEndOptions() : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
+    const std::vector<MeasuredScene> scenes = Scenes(frames);
+    const std::string header = Format("Generated by `measure_frontend --frames %d --step %d --method %s`.\n\n", frames,
+                                      step, method.c_str());
+    const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, step);
+    const std::string sequences = header + SequenceTable(scenes, method, options);
+    std::printf("%s\n%s", detectors.c_str(), sequences.c_str());
+    if (!out.empty()) {
+      std::filesystem::create_directories(out);
+      if (!skip_detectors) WriteTextFileAtomically(out + "/detectors.md", detectors);
+      WriteTextFileAtomically(out + "/sequences.md", sequences);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "measure_frontend: error: %s\n", e.what());
+    return 1;
+  }
+}

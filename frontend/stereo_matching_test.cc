@@ -1,0 +1,95 @@
+#include "frontend/stereo_matching.h"
+
+#include <gtest/gtest.h>
+
+#include "frontend/rendered_pair.h"
+
+namespace slt {
+namespace {
+
+const RenderedRoom& Room() {
+  static const RenderedRoom room;
+  return room;
+}
+
+// Detect, describe and match frame 0 of the rendered room with the default options.
+struct MatchedPair {
+  std::vector<ImageLine> lines[2];
+  std::vector<StereoMatch> matches;
+};
+
+MatchedPair MatchFrame(int frame, const FrontEndOptions& options) {
+  const RenderedRoom& room = Room();
+  MatchedPair out;
+  std::vector<MsldDescriptor> descriptors[2];
+  cv::Mat images[2];
+  const std::unique_ptr<LineDetector> detector = MakeLineDetector(options.detection.detector);
+  MsldExtractor msld;
+  for (int c = 0; c < 2; ++c) {
+    images[c] = room.Image(frame, c);
+    out.lines[c] = DetectLines(*detector, options.detection, images[c]);
+    msld.SetImage(images[c]);
+    descriptors[c].resize(out.lines[c].size());
+    for (size_t i = 0; i < out.lines[c].size(); ++i) msld.Compute(out.lines[c][i].segment, &descriptors[c][i]);
+  }
+  StereoMatcher matcher(options.matching, room.rig());
+  matcher.Match(images[0], images[1], out.lines[0], descriptors[0], out.lines[1], descriptors[1], &out.matches);
+  return out;
+}
+
+TEST(StereoMatching, RenderedRoomPairMatchesAreCorrectAndOneToOne) {
+  const MatchedPair pair = MatchFrame(0, FrontEndOptions());
+  const ProjectedGroundTruth truth[2] = {Room().Projected(0, 0), Room().Projected(0, 1)};
+  int correct = 0, unjudged = 0;
+  std::vector<char> used_left(pair.lines[0].size(), 0), used_right(pair.lines[1].size(), 0);
+  std::vector<int> common;
+  for (const StereoMatch& m : pair.matches) {
+    EXPECT_FALSE(used_left[m.left]++) << "left line " << m.left << " matched twice";
+    EXPECT_FALSE(used_right[m.right]++) << "right line " << m.right << " matched twice";
+    EXPECT_GT(m.ncc, 0.6f);
+    const PairVerdict verdict =
+        JudgeStereoPair(truth[0], truth[1], pair.lines[0][m.left].segment, pair.lines[1][m.right].segment, &common);
+    correct += verdict == PairVerdict::kCorrect;
+    unjudged += verdict == PairVerdict::kUnjudged;
+  }
+  // Matches of lines the ground truth does not list (texture, shading) cannot be judged; they
+  // are few.
+  EXPECT_LE(unjudged, 0.1 * pair.matches.size());
+  // Issue 18 asks for >= 99 % correct stereo matches; the room's frame 0 gives enough matches
+  // for that to mean something.
+  ASSERT_GE(pair.matches.size(), 40u) << "detected " << pair.lines[0].size() << " / " << pair.lines[1].size();
+  EXPECT_GE(correct, 0.99 * (pair.matches.size() - unjudged)) << correct << " of " << pair.matches.size() - unjudged;
+}
+
+TEST(StereoMatching, EveryMatchSatisfiesTheGeometry) {
+  const MatchingOptions options;
+  const MatchedPair pair = MatchFrame(1, FrontEndOptions());
+  const StereoGeometry geometry(Room().rig());
+  ASSERT_TRUE(geometry.rectified());
+  const double sine = std::sin(options.epipolar_angle_deg * M_PI / 180.0);
+  for (const StereoMatch& m : pair.matches) {
+    const Segment2d& l = pair.lines[0][m.left].segment;
+    const Segment2d& r = pair.lines[1][m.right].segment;
+    EXPECT_GE(geometry.BeamOverlap(l, r, sine, options.epipolar_distance_px), options.min_overlap);
+    EXPECT_TRUE(geometry.DisparityInRange(l, r, options.min_disparity_px, options.max_disparity_px));
+    EXPECT_GT((l.tail<2>() - l.head<2>()).dot(r.tail<2>() - r.head<2>()), 0.0) << "orientations differ";
+  }
+}
+
+TEST(StereoGeometry, BeamOverlapOfRectifiedSegments) {
+  StereoRig rig;  // the default rig: rectified, right camera at +x
+  const StereoGeometry geometry(rig);
+  ASSERT_TRUE(geometry.rectified());
+  // A vertical segment rows 100..200 and a right one rows 150..250: overlap 50 of 100.
+  EXPECT_NEAR(geometry.BeamOverlap(Segment2d(300, 100, 300, 200), Segment2d(280, 150, 280, 250), 0.1, 1.5), 0.5,
+              1e-9);
+  EXPECT_EQ(geometry.BeamOverlap(Segment2d(300, 100, 300, 200), Segment2d(280, 210, 280, 250), 0.1, 1.5), 0.0);
+  // Horizontal segments: on the same row or not.
+  EXPECT_EQ(geometry.BeamOverlap(Segment2d(100, 120, 200, 120), Segment2d(80, 120.5, 180, 120.8), 0.1, 1.5), 1.0);
+  EXPECT_EQ(geometry.BeamOverlap(Segment2d(100, 120, 200, 120), Segment2d(80, 124, 180, 124), 0.1, 1.5), 0.0);
+  EXPECT_TRUE(geometry.DisparityInRange(Segment2d(300, 100, 300, 200), Segment2d(280, 150, 280, 250), 0, 256));
+  EXPECT_FALSE(geometry.DisparityInRange(Segment2d(300, 100, 300, 200), Segment2d(320, 150, 320, 250), 0, 256));
+}
+
+}  // namespace
+}  // namespace slt
