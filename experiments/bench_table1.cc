@@ -1,7 +1,11 @@
 // bench_table1: the paper's Table 1 (time per stereo frame at the minimum number of lines and
 // at 10, 20 and 30 lines) for every registered tracker, in one run so the ratios hold.
 //
-//   bench_table1 [--out DIR] [--benchmark_filter=REGEX] [--benchmark_out=FILE] [...]
+//   bench_table1 [--out DIR] [--extra 'METHOD JSON']... [--benchmark_filter=REGEX] [--benchmark_out=FILE] [...]
+//
+// --extra adds a row for a registered method with the given options after the default rows
+// (e.g. --extra 'taylor_line_sfm {"window_frames": 20}', labelled "taylor_line_sfm
+// (window_frames=20)"), measured in the same run.
 //
 // Each benchmark times one Track() call (prediction and update with every line of the frame)
 // per iteration on one simulated paper-protocol sequence (noise +-2.5 px, 100 frames) in which
@@ -84,8 +88,9 @@ StereoSequence BenchSequence(int count) {
   return FilterLines(sim.sequence, [&](std::int64_t id) { return keep.count(id) > 0; });
 }
 
-void BM_TrackFrame(benchmark::State& state, const std::string& method, std::shared_ptr<const StereoSequence> sequence) {
-  std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
+void BM_TrackFrame(benchmark::State& state, const std::string& method, const nlohmann::json& options,
+                   std::shared_ptr<const StereoSequence> sequence) {
+  std::unique_ptr<PoseTracker> tracker = CreateTracker(method, options, "--extra");
   auto warm_up = [&]() {
     tracker->Reset(sequence->rig);
     for (int k = 0; k < kWarmupFrames; ++k) tracker->Track(sequence->frames[k]);
@@ -189,8 +194,10 @@ const PaperRow* PaperRowFor(const std::string& method) {
 
 int main(int argc, char** argv) {
   using namespace slt;
-  // Our own flag (--out DIR or --out=DIR); everything else goes to Google Benchmark.
+  // Our own flags (--out DIR or --out=DIR, --extra 'METHOD JSON'); everything else goes to
+  // Google Benchmark.
   std::string out_dir;
+  std::vector<std::string> extras;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
@@ -198,6 +205,10 @@ int main(int argc, char** argv) {
       out_dir = argv[++i];
     } else if (a.rfind("--out=", 0) == 0) {
       out_dir = a.substr(6);
+    } else if (a == "--extra" && i + 1 < argc) {
+      extras.push_back(argv[++i]);
+    } else if (a.rfind("--extra=", 0) == 0) {
+      extras.push_back(a.substr(8));
     } else {
       args.push_back(argv[i]);
     }
@@ -214,13 +225,37 @@ int main(int argc, char** argv) {
       if (!sequences.count(lines)) sequences[lines] = std::make_shared<const StereoSequence>(BenchSequence(lines));
       return sequences[lines];
     };
+    // Rows: every registered tracker with its defaults, then the --extra ones.
+    std::vector<std::pair<std::string, nlohmann::json>> rows;
     for (const TrackerInfo& info : RegisteredTrackers()) {
-      if (info.plumbing_only) continue;
-      methods.push_back(info.name);
+      if (!info.plumbing_only) rows.emplace_back(info.name, nlohmann::json::object());
+    }
+    for (const std::string& extra : extras) {
+      const size_t space = extra.find(' ');
+      const std::string method = extra.substr(0, space);
+      nlohmann::json options = nlohmann::json::object();
+      if (space != std::string::npos) {
+        try {
+          options = nlohmann::json::parse(extra.substr(space + 1));
+        } catch (const nlohmann::json::exception& e) {
+          throw std::invalid_argument("--extra '" + extra + "': not JSON after the method name: " + e.what());
+        }
+      }
+      CreateTracker(method, options, "--extra '" + extra + "'");  // throws on a bad name or option
+      rows.emplace_back(method, options);
+    }
+    for (const auto& [method, options] : rows) {
+      // "taylor_line_sfm (window_frames=20)": no braces or quotes for the Markdown and LaTeX tables.
+      std::string label = method;
+      for (const auto& [key, value] : options.items()) {
+        label += (label == method ? " (" : ", ") + key + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+      }
+      if (label != method) label += ")";
+      methods.push_back(label);
       for (int column = 0; column < 4; ++column) {
-        Cell cell{info.name, column, column == 0 ? info.minimum_lines : kCounts[column - 1]};
+        Cell cell{label, column, column == 0 ? FindTracker(method).minimum_lines : kCounts[column - 1]};
         cells.push_back(cell);
-        benchmark::RegisterBenchmark(BenchmarkName(cell).c_str(), BM_TrackFrame, info.name, sequence_for(cell.lines))
+        benchmark::RegisterBenchmark(BenchmarkName(cell).c_str(), BM_TrackFrame, method, options, sequence_for(cell.lines))
             ->Unit(benchmark::kMicrosecond)
             ->UseRealTime();
       }

@@ -4,6 +4,7 @@
 
 #include "methods/constant_pose/constant_pose_tracker.h"
 #include "methods/pose_tracker.h"
+#include "methods/taylor_line_sfm/taylor_line_sfm.h"
 #include "methods/trifocal_line_ekf/trifocal_line_ekf.h"
 #include "methods/yu_point_ekf/yu_point_ekf.h"
 
@@ -14,6 +15,7 @@ const std::vector<TrackerInfo>& RegisteredTrackers() {
   static const std::vector<TrackerInfo> trackers = {
       TrifocalLineEkfInfo(),
       YuPointEkfInfo(),
+      TaylorLineSfmInfo(),
       ConstantPoseTrackerInfo(),
   };
   return trackers;
