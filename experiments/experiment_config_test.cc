@@ -183,7 +183,7 @@ TEST(FormatValue, NumbersInShortestFormStringsAsIs) {
   EXPECT_EQ(FormatValue(json(true)), "true");
 }
 
-TEST(ExperimentConfig, Datasets ConfigMakesTheDatasetsTheSweep) {
+TEST(ExperimentConfig, DatasetsAreTheSweep) {
   const ExperimentConfig c = ExperimentConfigFromJson(
       {{"trials", 1},
        {"datasets", {{{"path", "data/kitti_00/"}}, {{"path", "x/euroc"}, {"label", "V1"}, {"end_frame", 20}}}},
@@ -200,7 +200,7 @@ TEST(ExperimentConfig, Datasets ConfigMakesTheDatasetsTheSweep) {
   EXPECT_EQ(ExperimentConfigToJson(back), ExperimentConfigToJson(c));
 }
 
-TEST(ExperimentConfig, Datasets ErrorsNameTheKey) {
+TEST(ExperimentConfig, DatasetErrorsNameTheKey) {
   const json one = {{{"path", "d"}}};
   EXPECT_EQ(ErrorOf({{"datasets", one}}), "cfg.json: key 'trials': must be 1 with \"datasets\" (a recorded sequence has no random draws)");
   EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", json::array()}}),
