@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -125,10 +125,12 @@ TEST(StereoLinesIo, EmptyFramesAndNoFramesRoundTrip) {
 TEST(StereoLinesIo, LargeSequenceWritesAndReadsQuickly) {
   const StereoSequence written = RandomSequence(1000, 80, 2);
   const std::string path = TempPath("large.json");
-  const auto start = std::chrono::steady_clock::now();
+  // Process CPU time, not wall time: the test shares the machine with other jobs, and a wall
+  // clock measures their load rather than the reader.
+  const std::clock_t start = std::clock();
   WriteStereoLines(path, written);
   const StereoSequence read = ReadStereoLines(path);
-  [[maybe_unused]] const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  [[maybe_unused]] const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
   ASSERT_EQ(read.frames.size(), 1000u);
   for (size_t k = 0; k < read.frames.size(); ++k) {
     ExpectSameObservations(read.frames[k].left, written.frames[k].left);
@@ -136,7 +138,7 @@ TEST(StereoLinesIo, LargeSequenceWritesAndReadsQuickly) {
   }
 #if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
   // The requirement is "well under a second" for an optimised build (about 0.3 s measured);
-  // the bound leaves room for a loaded machine. Debug and sanitizer builds (3 s under ASan)
+  // the bound leaves room for a slower machine. Debug and sanitizer builds (3 s under ASan)
   // are several times slower and are not timed.
   EXPECT_LT(seconds, 2.0);
 #endif

@@ -83,6 +83,11 @@ struct TrackerInfo {
   // The fewest stereo-matched lines the method can work with (the "minimum number" column of
   // the paper's Table 1).
   int minimum_lines = 2;
+  // True for methods that need "primitive configurations" (two parallel lines and a third
+  // orthogonal to them, Elqursh & Elgammal), which the paper's random lines practically never
+  // hold: the shared suite and bench_table1 give them paper scenes with part of the lines on
+  // cuboids (scene.paper.cuboid_fraction) instead.
+  bool needs_primitive_configurations = false;
 };
 
 // One frame of a run: the tracker's output and the wall time of its Track() call.

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "methods/constant_pose/constant_pose_tracker.h"
+#include "methods/elqursh_three_line/elqursh_three_line.h"
 #include "methods/pose_tracker.h"
 #include "methods/taylor_line_sfm/taylor_line_sfm.h"
 #include "methods/trifocal_line_ekf/trifocal_line_ekf.h"
@@ -16,6 +17,7 @@ const std::vector<TrackerInfo>& RegisteredTrackers() {
       TrifocalLineEkfInfo(),
       YuPointEkfInfo(),
       TaylorLineSfmInfo(),
+      ElqurshThreeLineInfo(),
       ConstantPoseTrackerInfo(),
   };
   return trackers;

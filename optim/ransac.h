@@ -35,6 +35,12 @@
 //   double Threshold(int datum) const;       // inlier threshold on that cost
 //   // Optional: refines `model` on `inliers` (sorted datum indices); false leaves it unused.
 //   bool LocalOptimize(const std::vector<int>& inliers, Model* model) const;
+//   // Optional: draws the sample itself instead of step 1's uniform draw, for problems whose
+//   // plausible samples are known (e.g. the candidate line triplets of a primitive
+//   // configuration, methods/elqursh_three_line): writes MinSampleSize() .. MaxSampleSize()
+//   // datum indices to sample[] and returns their count, or 0 when it has no more samples
+//   // (the loop then stops). It draws from the loop's generator, so a seed still fixes the run.
+//   int DrawSample(std::mt19937_64& rng, int* sample) const;
 //
 // Random draws come from the Ransac object's std::mt19937_64, seeded by the caller: one stream
 // per solver, reproducible for a seed and the sequence of calls.
@@ -76,6 +82,12 @@ struct FixedSampleSize {
 };
 
 namespace ransac_internal {
+template <typename E, typename = void>
+struct HasDrawSample : std::false_type {};
+template <typename E>
+struct HasDrawSample<E, std::void_t<decltype(std::declval<const E&>().DrawSample(std::declval<std::mt19937_64&>(),
+                                                                                 std::declval<int*>()))>>
+    : std::true_type {};
 template <typename E, typename = void>
 struct HasLocalOptimize : std::false_type {};
 template <typename E>
@@ -156,11 +168,16 @@ void Ransac<Model>::Run(const Estimator& estimator, const RansacOptions& options
   sample_.resize(max_sample);
   for (int iteration = 0; iteration < needed && iteration < options.max_iterations; ++iteration) {
     int count = 0;
-    while (count < max_sample && count < n &&
-           (count < min_sample || !estimator.SampleComplete(sample_.data(), count))) {
-      const int candidate = pick(rng_);
-      if (std::find(sample_.begin(), sample_.begin() + count, candidate) != sample_.begin() + count) continue;
-      sample_[count++] = candidate;
+    if constexpr (ransac_internal::HasDrawSample<Estimator>::value) {
+      count = estimator.DrawSample(rng_, sample_.data());
+      if (count == 0) break;  // no more samples
+    } else {
+      while (count < max_sample && count < n &&
+             (count < min_sample || !estimator.SampleComplete(sample_.data(), count))) {
+        const int candidate = pick(rng_);
+        if (std::find(sample_.begin(), sample_.begin() + count, candidate) != sample_.begin() + count) continue;
+        sample_[count++] = candidate;
+      }
     }
     ++result->samples;
     largest_sample = std::max(largest_sample, count);

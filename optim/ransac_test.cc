@@ -248,5 +248,68 @@ TEST(Ransac, DrawsUntilTheEstimatorCallsTheSampleComplete) {
   EXPECT_TRUE(saw_two && saw_three);
 }
 
+// Samples drawn by the estimator: only pairs of the first `usable` points (the others are
+// outliers the estimator knows not to sample), and no more than `budget` of them.
+class OwnSamplerEstimator {
+ public:
+  using Model = Line2;
+  OwnSamplerEstimator(const std::vector<Eigen::Vector2d>& points, int usable, int budget, std::vector<int>* drawn)
+      : line_(points, 0.1), usable_(usable), budget_(budget), drawn_(drawn) {}
+  int NumData() const { return line_.NumData(); }
+  int MinSampleSize() const { return 2; }
+  int MaxSampleSize() const { return 2; }
+  bool SampleComplete(const int*, int) const { return true; }
+  int DrawSample(std::mt19937_64& rng, int* sample) const {
+    if (static_cast<int>(drawn_->size()) == 2 * budget_) return 0;
+    std::uniform_int_distribution<int> pick(0, usable_ - 1);
+    sample[0] = pick(rng);
+    do sample[1] = pick(rng);
+    while (sample[1] == sample[0]);
+    drawn_->insert(drawn_->end(), sample, sample + 2);
+    return 2;
+  }
+  void MinimalSolve(const int* sample, int count, std::vector<Model>* models) const {
+    line_.MinimalSolve(sample, count, models);
+  }
+  bool Cost(int datum, const Model& model, double* cost) const { return line_.Cost(datum, model, cost); }
+  double Threshold(int datum) const { return line_.Threshold(datum); }
+
+ private:
+  LineFitEstimator line_;
+  int usable_;
+  int budget_;
+  std::vector<int>* drawn_;
+};
+
+TEST(Ransac, AnEstimatorMayDrawItsOwnSamples) {
+  // 5 inliers among 45 outliers: uniform pairs are all-inlier with probability 0.8 %, the
+  // estimator's pairs always.
+  std::vector<Eigen::Vector2d> points = LinePoints(5, 45, 10);
+  std::vector<int> drawn;
+  Ransac<Line2> ransac(5);
+  RansacResult<Line2> result;
+  RansacOptions options;
+  options.max_iterations = 3;
+  ransac.Run(OwnSamplerEstimator(points, 5, 100, &drawn), options, {}, &result);
+  ASSERT_TRUE(result.success);
+  EXPECT_EQ(result.inliers.size(), 5u);
+  for (int d : drawn) EXPECT_LT(d, 5);
+  EXPECT_EQ(result.samples, static_cast<int>(drawn.size()) / 2);
+  // Same seed, same draws.
+  std::vector<int> again;
+  ransac.Reset(5);
+  ransac.Run(OwnSamplerEstimator(points, 5, 100, &again), options, {}, &result);
+  EXPECT_EQ(again, drawn);
+  // An estimator out of samples stops the loop: one sample here, though 3 are allowed.
+  drawn.clear();
+  ransac.Run(OwnSamplerEstimator(points, 5, 1, &drawn), options, {}, &result);
+  EXPECT_EQ(result.samples, 1);
+  EXPECT_EQ(drawn.size(), 2u);
+  drawn.clear();
+  ransac.Run(OwnSamplerEstimator(points, 5, 0, &drawn), options, {}, &result);
+  EXPECT_EQ(result.samples, 0);
+  EXPECT_FALSE(result.success);
+}
+
 }  // namespace
 }  // namespace slt

@@ -5,6 +5,7 @@
 #include <array>
 #include <utility>
 
+#include "simulator/paper_cuboids.h"
 #include "simulator/random_draws.h"
 
 namespace slt {
@@ -195,8 +196,9 @@ double BookAlbedo(RandomStream& rng, double previous) {
 
 void MakePaperScene(const PaperSceneConfig& c, RandomStream& rng, std::uint64_t seed, Scene* scene) {
   // Always six draws per line: line i uses draws 6i .. 6i+5, so the first N lines of a scene
-  // are the N-line scene of the same seed.
-  for (int i = 0; i < c.lines; ++i) {
+  // are the N-line scene of the same seed. Cuboid edges (paper_cuboids.h), already in
+  // scene->lines, take the place of the last random lines.
+  for (int i = 0; i < c.lines - PaperCuboidLineCount(c); ++i) {
     Eigen::Vector3d mid;
     for (int k = 0; k < 3; ++k) mid[k] = c.box_center_m[k] + c.box_size_m[k] * Uniform(rng, -0.5, 0.5);
     const Eigen::Vector3d direction = UniformUnitVector(rng);
@@ -410,6 +412,7 @@ Scene MakeScene(const SceneConfig& config, std::uint64_t seed) {
   Scene scene;
   switch (config.type) {
     case SceneType::kPaper:
+      AddPaperCuboids(config.paper, seed, &scene.lines);  // ids 0 .. cuboid lines - 1, none by default
       MakePaperScene(config.paper, rng, seed, &scene);
       return scene;
     case SceneType::kRoom: MakeRoomScene(config.room, rng, seed, &scene); break;

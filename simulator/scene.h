@@ -23,7 +23,8 @@ struct Scene {
 // Draws only from the "scene" stream of `seed`. In the structured scenes the ids are a random
 // permutation, so that the first N ids (max_features) are spread over the scene; in the paper
 // scene the lines are independent draws, so the first N lines of a scene are the lines of the
-// N-line scene with the same seed.
+// N-line scene with the same seed (with scene.paper.cuboid_fraction > 0 the cuboid edges come
+// first, then the random lines, see paper_cuboids.h).
 Scene MakeScene(const SceneConfig& config, std::uint64_t seed);
 
 }  // namespace slt

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace slt {
 namespace {
 
@@ -33,6 +36,49 @@ TEST(Scene, PaperScenesWithFewerLinesAreNested) {
   const std::vector<Line3d> some = MakeScene(c, 5).lines;
   EXPECT_TRUE(SameLines(some, std::vector<Line3d>(all.begin(), all.begin() + 10)));
   EXPECT_FALSE(SameLines(MakeScene(c, 6).lines, some));
+}
+
+double DirectionSine(const Line3d& a, const Line3d& b) {
+  return (a.q - a.p).normalized().cross((b.q - b.p).normalized()).norm();
+}
+double DirectionCosine(const Line3d& a, const Line3d& b) {
+  return std::abs((a.q - a.p).normalized().dot((b.q - b.p).normalized()));
+}
+
+TEST(Scene, PaperCuboidsComeFirstAndLeaveTheRandomLinesAlone) {
+  SceneConfig c;
+  const std::vector<Line3d> plain = MakeScene(c, 3).lines;
+  c.paper.cuboid_fraction = 0.3;
+  const std::vector<Line3d> mixed = MakeScene(c, 3).lines;
+  ASSERT_EQ(mixed.size(), 40u);
+  // 12 cuboid edges, then the first 28 lines of the plain scene, drawn as before.
+  EXPECT_TRUE(SameLines(std::vector<Line3d>(mixed.begin() + 12, mixed.end()),
+                        std::vector<Line3d>(plain.begin(), plain.begin() + 28)));
+  for (int i = 0; i < 12; ++i) {
+    const double length = (mixed[i].q - mixed[i].p).norm();
+    EXPECT_GE(length, c.paper.min_length_m - 1e-12);
+    EXPECT_LE(length, c.paper.max_length_m + 1e-12);
+  }
+  // A rectangle: opposite edges parallel, adjacent ones orthogonal and joined.
+  EXPECT_LT(DirectionSine(mixed[0], mixed[2]), 1e-12);
+  EXPECT_LT(DirectionSine(mixed[1], mixed[3]), 1e-12);
+  EXPECT_LT(DirectionCosine(mixed[0], mixed[1]), 1e-12);
+  for (int i = 0; i < 4; ++i) EXPECT_LT((mixed[i].q - mixed[(i + 1) % 4].p).norm(), 1e-12);
+  // A box corner cut to 8 of its 9 edges: three orthogonal edges from one vertex, each of the
+  // other five parallel to one of them.
+  for (int i = 4; i < 7; ++i) {
+    EXPECT_LT((mixed[i].p - mixed[4].p).norm(), 1e-12);
+    for (int j = 4; j < i; ++j) EXPECT_LT(DirectionCosine(mixed[i], mixed[j]), 1e-12);
+  }
+  for (int i = 7; i < 12; ++i) {
+    const double sine = std::min({DirectionSine(mixed[i], mixed[4]), DirectionSine(mixed[i], mixed[5]),
+                                  DirectionSine(mixed[i], mixed[6])});
+    EXPECT_LT(sine, 1e-12) << "line " << i;
+  }
+  // Other seeds, other cuboids.
+  EXPECT_FALSE(SameLines(MakeScene(c, 4).lines, mixed));
+  c.paper.cuboid_fraction = 1.0;
+  EXPECT_EQ(MakeScene(c, 3).lines.size(), 40u);
 }
 
 // Structured scenes: everything inside the room, nothing degenerate, ids shuffled by the seed.

@@ -88,6 +88,8 @@ const OptionSchema<PaperSceneConfig>& PaperSceneSchema() {
                                     .Field("max_length_m", &C::max_length_m, AnyNumber(), "longest segment (m)"),
                                 "box_center_m", &C::box_center_m, "centre of the box of midpoints (world, m)"),
                    "box_size_m", &C::box_size_m, "size of that box (m)")
+          .Field("cuboid_fraction", &C::cuboid_fraction, InRange(0.0, 1.0),
+                 "fraction of the lines on cuboid pieces (rectangles, box corners) instead of random segments")
           .Check("max_length_m",
                  [](const C& c) {
                    return c.max_length_m >= c.min_length_m && std::isfinite(c.max_length_m)

@@ -40,6 +40,10 @@ struct PaperSceneConfig {
   // Sized with the motion's excursion: over 100 frames of the default "paper" motion about
   // 93% of the observed segments cross the image over at least 20 px.
   Eigen::Vector3d box_size_m{0.2, 0.15, 0.2};
+  // Fraction of the lines (rounded) that are edges of cuboid pieces (rectangles and box corners,
+  // simulator/paper_cuboids.h) instead of independent random segments: scenes with the
+  // "primitive configurations" Elqursh & Elgammal's method needs. 0 = the paper's scene.
+  double cuboid_fraction = 0.0;
 };
 
 // scene.room: a furnished room; the camera starts 0.4 * depth from the back wall, in the

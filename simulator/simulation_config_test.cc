@@ -61,7 +61,7 @@ TEST(SimulationConfig, EveryFieldRoundTrips) {
   c.focal_error_px = -20.0;
   c.max_features = 12;
   c.scene.type = SceneType::kCorridor;
-  c.scene.paper = {7, 0.2, 0.4, {0.1, 0.2, 1.0}, {1.0, 2.0, 3.0}};
+  c.scene.paper = {7, 0.2, 0.4, {0.1, 0.2, 1.0}, {1.0, 2.0, 3.0}, 0.25};
   c.scene.room = {6.0, 7.0, 3.0, 1.6};
   c.scene.corridor = {2.5, 2.8, 40.0, 1.7};
   c.motion.type = MotionType::kPureRotation;
@@ -128,6 +128,8 @@ TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"scene": {"paper": {"box_size_m": [1, 2]}}})"),
             "sim.json: key 'scene.paper.box_size_m': expected an array of 3 numbers");
   EXPECT_EQ(ConfigErrorOf(R"({"outliers": {"rate": 1.5}})"), "sim.json: key 'outliers.rate': must be in [0, 1]");
+  EXPECT_EQ(ConfigErrorOf(R"({"scene": {"paper": {"cuboid_fraction": -0.1}}})"),
+            "sim.json: key 'scene.paper.cuboid_fraction': must be in [0, 1]");
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_px": "big"}})"),
             "sim.json: key 'noise.endpoint_px': expected a number, got string");
   EXPECT_EQ(ConfigErrorOf(R"({"focal_error_px": -900})"),

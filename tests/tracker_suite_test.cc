@@ -12,15 +12,24 @@
 namespace slt {
 namespace {
 
+// Part of the paper scene's lines on cuboids for the methods that need primitive
+// configurations (TrackerInfo::needs_primitive_configurations): the paper's 30 % of 40 lines,
+// a rectangle and most of a box corner.
+constexpr double kSuiteCuboidFraction = 0.3;
+
 class TrackerSuite : public ::testing::TestWithParam<std::string> {
  protected:
   const TrackerInfo& info() const { return FindTracker(GetParam()); }
   std::unique_ptr<PoseTracker> Make() const { return CreateTracker(GetParam()); }
+  // The suite's scene for this tracker: `j`, with the paper scene's cuboids when the method
+  // needs them (the other scenes ignore scene.paper).
+  SimulatedSequence Simulated(nlohmann::json j) const {
+    if (info().needs_primitive_configurations) {
+      j.merge_patch({{"scene", {{"paper", {{"cuboid_fraction", kSuiteCuboidFraction}}}}}});
+    }
+    return Simulate(SimulationConfigFromJson(j, "suite simulation"));
+  }
 };
-
-SimulatedSequence Simulated(const nlohmann::json& j) {
-  return Simulate(SimulationConfigFromJson(j, "suite simulation"));
-}
 
 TEST_P(TrackerSuite, FirstFrameIsTheWorld) {
   const SimulatedSequence sim = Simulated({{"frames", 3}});

@@ -216,6 +216,20 @@ Eigen::Vector2d LineTransferModel::Residual(const Eigen::Vector3d& line, const O
   return r;
 }
 
+bool LineTransferModel::EndpointDistances(int index, const Rigid3d& cam_from_ref, Eigen::Vector4d* distances) const {
+  const Match& match = matches_[index];
+  const StereoLine& ref = reference_[match.reference];
+  if (paper_direction_ || !distance_residual_ || ref.degenerate) return false;
+  const StereoLine& cur = current_[match.current];
+  const PlueckerLine& line = reference_lines_[match.reference].line;
+  const Eigen::Vector3d left = left_pixel_from_normalized_ * TransformPluecker(cam_from_ref, line).moment;
+  const Eigen::Vector3d right =
+      right_pixel_from_normalized_ * TransformPluecker(RightFromRef(cam_from_ref), line).moment;
+  *distances << SignedDistance(left, cur.left.segment.head<2>()), SignedDistance(left, cur.left.segment.tail<2>()),
+      SignedDistance(right, cur.right.segment.head<2>()), SignedDistance(right, cur.right.segment.tail<2>());
+  return distances->allFinite();
+}
+
 bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                                  FeatureBlock* block) const {
   const Match& match = matches_[index];

@@ -77,20 +77,6 @@ nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& options);
 
 class LineTransferModel final : public FeatureModel {
  public:
-  explicit LineTransferModel(const LineTransferOptions& options);
-
-  void Reset(const StereoRig& rig) override;
-  int SetReference(const StereoFrame& frame) override;
-  int SetCurrent(const StereoFrame& frame) override;
-  int NumFeatures() const override { return static_cast<int>(matches_.size()); }
-  int CurrentStereoFeatures() const override { return current_stereo_; }
-  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
-                FeatureBlock* block) const override;
-
-  // The id of feature `index` (for diagnostics and tests).
-  std::int64_t FeatureId(int index) const { return matches_[index].id; }
-
- private:
   // One observed segment with its normalised line (unit norm) and the Jacobian of that line
   // with respect to the segment's endpoints (scaled consistently with the unit norm; the
   // residuals are invariant to the line's positive scale, see docs/derivations.md).
@@ -104,6 +90,31 @@ class LineTransferModel final : public FeatureModel {
     ObservedSegment left, right;
     bool degenerate;  // within min_epipolar_angle_deg of the epipolar direction
   };
+  explicit LineTransferModel(const LineTransferOptions& options);
+
+  void Reset(const StereoRig& rig) override;
+  int SetReference(const StereoFrame& frame) override;
+  int SetCurrent(const StereoFrame& frame) override;
+  int NumFeatures() const override { return static_cast<int>(matches_.size()); }
+  int CurrentStereoFeatures() const override { return current_stereo_; }
+  bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
+                FeatureBlock* block) const override;
+
+  // The id of feature `index` (for diagnostics and tests).
+  std::int64_t FeatureId(int index) const { return matches_[index].id; }
+  // The observations of feature `index` in the reference and the current pair, and the
+  // reference pair's 3-D line in the reference frame (StereoPairLine): for methods
+  // that use this model's matching and residuals with solvers of their own
+  // (methods/elqursh_three_line).
+  const StereoLine& ReferenceObservation(int index) const { return reference_[matches_[index].reference]; }
+  const StereoLine& CurrentObservation(int index) const { return current_[matches_[index].current]; }
+  const PlueckerLine& ReferenceLine3d(int index) const { return reference_lines_[matches_[index].reference].line; }
+  // The four signed endpoint distances (px) of Evaluate's residual without its Jacobian, for
+  // scoring many poses (RANSAC): direction reference_to_current with the endpoint_distance
+  // residual only (false for the other settings, and where Evaluate is false).
+  bool EndpointDistances(int index, const Rigid3d& cam_from_ref, Eigen::Vector4d* distances) const;
+
+ private:
   // Per reference line, for direction "reference_to_current": the 3-D line of the pair
   // (l_1, l'_1) in the reference frame, computed once per reference, with the Jacobians of
   // [n; d] with respect to the endpoints of the left and right segments.

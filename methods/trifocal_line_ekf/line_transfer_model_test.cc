@@ -101,6 +101,29 @@ INSTANTIATE_TEST_SUITE_P(AllVariants, LineTransferModelTest,
                          ::testing::Combine(::testing::Values("current_to_reference", "reference_to_current"),
                                             ::testing::Values("endpoint_distance", "theta_lambda")));
 
+TEST(LineTransferModel, EndpointDistancesAreEvaluatesResidual) {
+  TinyScene scene;
+  const Rigid3d truth = SomeMotion(), at = NearTruth(truth);
+  for (const char* direction : {"reference_to_current", "current_to_reference"}) {
+    for (const char* residual : {"endpoint_distance", "theta_lambda"}) {
+      LineTransferModel model(Options(direction, residual));
+      model.Reset(scene.rig);
+      model.SetReference(scene.Frame(Rigid3d()));
+      ASSERT_EQ(model.SetCurrent(scene.Frame(truth)), 4);
+      const bool supported = std::string(direction) == "reference_to_current" && std::string(residual) == "endpoint_distance";
+      for (int i = 0; i < model.NumFeatures(); ++i) {
+        Eigen::Vector4d distances;
+        ASSERT_EQ(model.EndpointDistances(i, at, &distances), supported) << direction << " " << residual;
+        if (!supported) continue;
+        FeatureBlock block;
+        ASSERT_TRUE(model.Evaluate(i, at, false, &block));
+        EXPECT_GT(block.residual.norm(), 1e-3);
+        EXPECT_LT((distances - block.residual).norm(), 1e-12 * block.residual.norm()) << "feature " << i;
+      }
+    }
+  }
+}
+
 TEST(LineTransferModel, AssociatesByIdAndSkipsMonocularLines) {
   TinyScene scene;
   LineTransferModel model(Options("current_to_reference", "endpoint_distance"));
