@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <charconv>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <cmath>
@@ -214,33 +215,79 @@ EurocCameraInfo ReadEurocCameraYaml(const std::string& path) {
   return camera;
 }
 
-std::vector<EurocImageEntry> ReadEurocImageList(const std::string& path) {
+namespace {
+
+// Calls `parse(line, where)` for every line that is neither blank nor a '#' comment, trimmed,
+// with where = "line N" for messages.
+void ForEachDataLine(const std::string& path, const std::string& what,
+                     const std::function<void(const std::string&, const std::string&)>& parse) {
   std::ifstream in(path);
-  if (!in) FailAt(path, "cannot read the image list");
-  std::vector<EurocImageEntry> entries;
+  if (!in) FailAt(path, "cannot read the " + what);
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
     line = Trim(line);
     if (line.empty() || line[0] == '#') continue;
+    parse(line, "line " + std::to_string(number));
+  }
+}
+
+std::int64_t ParseTimestampNs(const std::string& text, const std::string& path, const std::string& where) {
+  std::int64_t stamp = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), stamp);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    FailAt(path, where + ": timestamp is not an integer: '" + text + "'");
+  }
+  return stamp;
+}
+
+}  // namespace
+
+std::vector<EurocImageEntry> ReadEurocImageList(const std::string& path) {
+  std::vector<EurocImageEntry> entries;
+  ForEachDataLine(path, "image list", [&](const std::string& line, const std::string& where) {
     const size_t comma = line.find(',');
-    const std::string where = "line " + std::to_string(number);
     if (comma == std::string::npos) FailAt(path, where + ": expected 'timestamp,filename', got '" + line + "'");
-    const std::string stamp = Trim(line.substr(0, comma));
     EurocImageEntry entry;
-    const auto [end, error] = std::from_chars(stamp.data(), stamp.data() + stamp.size(), entry.timestamp_ns);
-    if (error != std::errc() || end != stamp.data() + stamp.size()) {
-      FailAt(path, where + ": timestamp is not an integer: '" + stamp + "'");
-    }
+    entry.timestamp_ns = ParseTimestampNs(Trim(line.substr(0, comma)), path, where);
     entry.filename = Trim(line.substr(comma + 1));
     if (entry.filename.empty()) FailAt(path, where + ": empty file name");
     if (!entries.empty() && entry.timestamp_ns <= entries.back().timestamp_ns) {
       FailAt(path, where + ": timestamps must increase");
     }
     entries.push_back(std::move(entry));
-  }
+  });
   return entries;
+}
+
+Trajectory ReadEurocGroundTruth(const std::string& path) {
+  Trajectory trajectory;
+  ForEachDataLine(path, "ground truth", [&](const std::string& line, const std::string& where_line) {
+    const std::string where = where_line + ": ";
+    std::stringstream fields(line);
+    std::string field;
+    std::getline(fields, field, ',');
+    const std::int64_t stamp = ParseTimestampNs(Trim(field), path, where_line);
+    double v[7];
+    for (int i = 0; i < 7; ++i) {
+      if (!std::getline(fields, field, ',')) {
+        FailAt(path, where + "expected timestamp, p_RS_R (3) and q_RS (w x y z), got " + std::to_string(i + 1) +
+                         " columns");
+      }
+      field = Trim(field);
+      const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), v[i]);
+      if (error != std::errc() || end != field.data() + field.size() || !std::isfinite(v[i])) {
+        FailAt(path, where + "column " + std::to_string(i + 2) + ": not a finite number: '" + field + "'");
+      }
+    }
+    const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+    if (std::abs(q.norm() - 1.0) > 1e-3) FailAt(path, where + "quaternion q_RS does not have unit norm");
+    const double time = static_cast<double>(stamp) * 1e-9;
+    if (!trajectory.empty() && !(time > trajectory.back().time)) FailAt(path, where + "timestamps must increase");
+    trajectory.push_back({time, Rigid3d::FromQuaternion(q.normalized(), Eigen::Vector3d(v[0], v[1], v[2]))});
+  });
+  return trajectory;
 }
 
 }  // namespace slt

@@ -51,5 +51,9 @@ std::vector<EurocImageEntry> ReadEurocImageList(const std::string& path);
 // (w, x, y, z) of world_from_body, the velocity v_RS_R (central differences of the positions)
 // and zero gyroscope and accelerometer biases.
 void WriteEurocGroundTruth(const std::string& path, const Trajectory& world_from_body);
+// Reads the same file (ours or EuRoC's own, at least the 8 columns timestamp, p_RS_R, q_RS):
+// world_from_body, times in seconds. std::runtime_error naming the file and line on a short or
+// malformed line, a quaternion that is not of unit norm (1e-3), or times that do not increase.
+Trajectory ReadEurocGroundTruth(const std::string& path);
 
 }  // namespace slt

@@ -5,6 +5,7 @@
 //            [--kitti-frame-period S] [--format table|json] [--json FILE] [--per-frame]
 //            [--plot FILE.png] [--strict]
 //            [--covariance LOG]
+//            [--kitti [--kitti-lengths 100,200,...]]
 //
 // GT and EST may also be given as --gt and --est. Prints a table of the errors (evo's
 // statistics with units) or, with --format json, the JSON that --json writes. Warns when fewer
@@ -110,6 +111,13 @@ int main(int argc, char** argv) {
   app.add_option("--covariance", covariance_path,
                  "The tracker's `track --log` file: adds the consistency of its pose covariance (NEES, errors "
                  "beyond 3 sigma; no alignment)");
+  bool kitti_metric = false;
+  slt::KittiOdometryOptions kitti_options;
+  app.add_flag("--kitti", kitti_metric,
+               "Also the KITTI odometry metric (\"kitti_odometry\": translation % and rotation deg/m over segments)");
+  app.add_option("--kitti-lengths", kitti_options.segment_lengths_m, "With --kitti: segment lengths in m")
+      ->delimiter(',')
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -173,6 +181,13 @@ int main(int argc, char** argv) {
     const std::string non_finite = slt::FindNonFiniteNumber(metrics);
     if (!non_finite.empty()) {
       throw std::runtime_error(est_path + " against " + gt_path + ": metric '" + non_finite + "' is not finite");
+    }
+    // After the check: a sequence shorter than every segment length has no KITTI segment, and
+    // its means are null by design (docs/metrics.md).
+    if (kitti_metric) {
+      kitti_options.max_time_diff_s = options.max_time_diff_s;
+      kitti_options.Check("--kitti-lengths");
+      metrics["kitti_odometry"] = slt::ToJson(slt::EvaluateKittiOdometry(gt, est, kitti_options));
     }
     metrics["warnings"] = warning.empty() ? nlohmann::json::array() : nlohmann::json::array({warning});
     // Every output or none: the plot (the step most likely to fail) first.

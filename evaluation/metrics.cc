@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/json_reader.h"
@@ -33,6 +34,21 @@ FrameError PoseError(int frame, double time, const Rigid3d& gt, const Rigid3d& e
 std::string TimeRange(const Trajectory& trajectory) {
   return trajectory.empty() ? std::string("no poses")
                             : "times " + Number(trajectory.front().time) + " to " + Number(trajectory.back().time);
+}
+
+}  // namespace
+
+namespace {
+
+// AssociateByTime; std::invalid_argument when nothing associates.
+std::vector<PosePair> AssociateOrThrow(const Trajectory& gt, const Trajectory& est, double max_time_diff_s) {
+  std::vector<PosePair> pairs = AssociateByTime(gt, est, max_time_diff_s);
+  if (pairs.empty()) {
+    throw std::invalid_argument("no estimate pose is within " + Number(max_time_diff_s) +
+                                " s of a ground-truth pose (ground truth: " + TimeRange(gt) +
+                                "; estimate: " + TimeRange(est) + ")");
+  }
+  return pairs;
 }
 
 }  // namespace
@@ -140,12 +156,7 @@ TrajectoryErrors EvaluateTrajectory(const Trajectory& gt, const Trajectory& est,
   errors.gt_poses = gt.size();
   errors.est_poses = est.size();
 
-  const std::vector<PosePair> pairs = AssociateByTime(gt, est, options.max_time_diff_s);
-  if (pairs.empty()) {
-    throw std::invalid_argument("no estimate pose is within " + Number(options.max_time_diff_s) +
-                                " s of a ground-truth pose (ground truth: " + TimeRange(gt) +
-                                "; estimate: " + TimeRange(est) + ")");
-  }
+  const std::vector<PosePair> pairs = AssociateOrThrow(gt, est, options.max_time_diff_s);
   const size_t n = pairs.size();
   errors.associated_poses = n;
   if (n < static_cast<size_t>(options.rpe_delta_frames) + 1) {
@@ -196,6 +207,81 @@ TrajectoryErrors EvaluateTrajectory(const Trajectory& gt, const Trajectory& est,
   errors.rpe_trans_m = ComputeStatistics(std::move(rpe_trans));
   errors.rpe_rot_deg = ComputeStatistics(std::move(rpe_rot));
   return errors;
+}
+
+void KittiOdometryOptions::Check(const std::string& where) const {
+  if (segment_lengths_m.empty()) throw ConfigError(where + ": key 'segment_lengths_m': needs at least one length");
+  for (const double length : segment_lengths_m) {
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      throw ConfigError(where + ": key 'segment_lengths_m': lengths must be finite and > 0, got " + Number(length));
+    }
+  }
+  if (step_frames < 1) throw ConfigError(where + ": key 'step_frames': must be >= 1");
+  if (!(max_time_diff_s >= 0.0) || !std::isfinite(max_time_diff_s)) {
+    throw ConfigError(where + ": key 'max_time_diff_s': must be a finite number >= 0");
+  }
+}
+
+KittiOdometryErrors EvaluateKittiOdometry(const Trajectory& gt, const Trajectory& est,
+                                          const KittiOdometryOptions& options) {
+  options.Check();
+  const std::vector<PosePair> pairs = AssociateOrThrow(gt, est, options.max_time_diff_s);
+  const size_t n = pairs.size();
+  std::vector<double> distance(n, 0.0);
+  for (size_t k = 1; k < n; ++k) {
+    distance[k] = distance[k - 1] + (gt[pairs[k].gt_index].world_from_cam.translation -
+                                     gt[pairs[k - 1].gt_index].world_from_cam.translation).norm();
+  }
+  KittiOdometryErrors errors;
+  errors.options = options;
+  errors.path_length_m = distance.back();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double trans_sum = 0.0, rot_sum = 0.0;
+  for (const double length : options.segment_lengths_m) {
+    KittiSegmentErrors per_length;
+    per_length.length_m = length;
+    double trans = 0.0, rot = 0.0;
+    for (size_t i = 0; i < n; i += static_cast<size_t>(options.step_frames)) {
+      // The devkit's lastFrameFromSegmentLength.
+      size_t j = i;
+      while (j < n && !(distance[j] > distance[i] + length)) ++j;
+      if (j == n) continue;
+      const Rigid3d& gt_i = gt[pairs[i].gt_index].world_from_cam;
+      const Rigid3d& gt_j = gt[pairs[j].gt_index].world_from_cam;
+      const Rigid3d& est_i = est[pairs[i].est_index].world_from_cam;
+      const Rigid3d& est_j = est[pairs[j].est_index].world_from_cam;
+      const Rigid3d e = (est_i.Inverse() * est_j).Inverse() * (gt_i.Inverse() * gt_j);
+      trans += e.translation.norm() / length;
+      rot += RotationAngle(e.rotation) * kDegreesPerRadian / length;
+      ++per_length.segments;
+    }
+    per_length.trans_err_pct = per_length.segments > 0 ? 100.0 * trans / per_length.segments : nan;
+    per_length.rot_err_deg_per_m = per_length.segments > 0 ? rot / per_length.segments : nan;
+    errors.segments += per_length.segments;
+    trans_sum += trans;
+    rot_sum += rot;
+    errors.per_length.push_back(per_length);
+  }
+  errors.trans_err_pct = errors.segments > 0 ? 100.0 * trans_sum / errors.segments : nan;
+  errors.rot_err_deg_per_m = errors.segments > 0 ? rot_sum / errors.segments : nan;
+  return errors;
+}
+
+nlohmann::json ToJson(const KittiOdometryErrors& errors) {
+  const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json per_length = nlohmann::json::array();
+  for (const KittiSegmentErrors& s : errors.per_length) {
+    per_length.push_back({{"length_m", s.length_m},
+                          {"segments", s.segments},
+                          {"trans_err_pct", number(s.trans_err_pct)},
+                          {"rot_err_deg_per_m", number(s.rot_err_deg_per_m)}});
+  }
+  return {{"path_length_m", errors.path_length_m},
+          {"step_frames", errors.options.step_frames},
+          {"segments", errors.segments},
+          {"trans_err_pct", number(errors.trans_err_pct)},
+          {"rot_err_deg_per_m", number(errors.rot_err_deg_per_m)},
+          {"per_length", per_length}};
 }
 
 nlohmann::json ToJson(const ErrorStatistics& s) {

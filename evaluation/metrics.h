@@ -117,6 +117,46 @@ nlohmann::json ToJson(const TrajectoryErrors& errors, bool include_per_frame);
 nlohmann::json ToJson(const ErrorStatistics& statistics);
 nlohmann::json ToJson(const ErrorCurve& curve);
 
+// The KITTI odometry benchmark's metric (Geiger, Lenz, Urtasun, "Are we ready for autonomous
+// driving?", CVPR 2012; the devkit's evaluate_odometry.cpp). After association by time (no
+// alignment), with d(k) the ground truth's path length up to pose k: for every first pose
+// i = 0, step, 2 step, ... and every length L, the first pose j with d(j) > d(i) + L (segments
+// running past the end are skipped),
+//   E = (P_i^-1 P_j)^-1 (Q_i^-1 Q_j)      (P the estimate, Q the ground truth),
+// translational error ||t(E)|| / L and rotational error angle(R(E)) / L. Reported as their
+// means over all segments: trans_err_pct = 100 * mean ||t(E)|| / L (the devkit's %) and
+// rot_err_deg_per_m = mean angle(R(E)) / L in degrees per metre; and per length.
+struct KittiOdometryOptions {
+  std::vector<double> segment_lengths_m = {100, 200, 300, 400, 500, 600, 700, 800};
+  int step_frames = 10;  // first poses every step_frames associated poses
+  double max_time_diff_s = 0.01;
+
+  // Throws ConfigError "<where>: key '<field>': <reason>".
+  void Check(const std::string& where = "KITTI odometry options") const;
+};
+
+struct KittiSegmentErrors {
+  double length_m = 0.0;
+  int segments = 0;
+  double trans_err_pct = 0.0;      // means over the segments of this length (NaN when none)
+  double rot_err_deg_per_m = 0.0;
+};
+
+struct KittiOdometryErrors {
+  KittiOdometryOptions options;
+  double path_length_m = 0.0;  // of the associated ground truth
+  int segments = 0;            // 0 when the sequence is shorter than every length
+  double trans_err_pct = 0.0;  // NaN when there are no segments
+  double rot_err_deg_per_m = 0.0;
+  std::vector<KittiSegmentErrors> per_length;
+};
+
+// Throws std::invalid_argument when nothing associates (as EvaluateTrajectory).
+KittiOdometryErrors EvaluateKittiOdometry(const Trajectory& gt, const Trajectory& est, const KittiOdometryOptions& options);
+// {"segments": .., "trans_err_pct": .., "rot_err_deg_per_m": .., "per_length": [...]} (null
+// for the means without segments).
+nlohmann::json ToJson(const KittiOdometryErrors& errors);
+
 // The paper's accumulated error over trials (Fig. 4-6): at each frame, the mean over trials
 // of the translation and rotation errors. Every curve must cover the same frames (throws
 // std::invalid_argument otherwise, or when there are no curves); time_s is averaged too.

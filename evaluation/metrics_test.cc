@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "common/json_reader.h"
@@ -304,6 +305,59 @@ TEST(Metrics, PerFrameCurveIsTheAccumulatedError) {
   EXPECT_EQ(j["rpe_rot_deg"]["count"], 11);
   EXPECT_EQ(j["per_frame"]["trans_err_m"].size(), 12u);
   EXPECT_FALSE(ToJson(e, false).contains("per_frame"));
+}
+
+// A straight drive along z, 1 m per frame, 10 Hz, and an estimate that overestimates each
+// step by 1 % and turns by 0.01 deg per frame about its y axis.
+TEST(KittiOdometry, KnownScaleAndRotationDrift) {
+  Trajectory gt, est;
+  for (int k = 0; k <= 200; ++k) {
+    gt.push_back({0.1 * k, Rigid3d(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, k))});
+    est.push_back({0.1 * k, Rigid3d(RotationAbout(Eigen::Vector3d::UnitY(), 0.01 * k), Eigen::Vector3d(0, 0, 1.01 * k))});
+  }
+  const KittiOdometryErrors errors = EvaluateKittiOdometry(gt, est, KittiOdometryOptions());
+  EXPECT_DOUBLE_EQ(errors.path_length_m, 200.0);
+  // 100 m: the first pose beyond d(i) + 100 is i + 101, for i = 0, 10, ..., 90; 200 m and more
+  // need 201 steps: none.
+  EXPECT_EQ(errors.segments, 10);
+  ASSERT_EQ(errors.per_length.size(), 8u);
+  EXPECT_EQ(errors.per_length[0].segments, 10);
+  EXPECT_EQ(errors.per_length[1].segments, 0);
+  EXPECT_TRUE(std::isnan(errors.per_length[1].trans_err_pct));
+  // Rotation: 101 frames of 0.01 deg over 100 m.
+  EXPECT_NEAR(errors.rot_err_deg_per_m, 1.01 / 100.0, 1e-9);
+  // Translation: ||t(E)|| = ||t_gt - t_est|| of the two motions from pose i: 101 m along z
+  // against 1.01 * 101 m along z turned by the estimate's heading at i, 0.01 i deg.
+  double expected_pct = 0.0;
+  for (int i = 0; i <= 90; i += 10) {
+    const double a = 101.0, b = 1.01 * 101.0, heading = 0.01 * i * M_PI / 180.0;
+    expected_pct += 100.0 * std::sqrt(a * a + b * b - 2.0 * a * b * std::cos(heading)) / 100.0 / 10.0;
+  }
+  EXPECT_NEAR(errors.trans_err_pct, expected_pct, 1e-9);
+  EXPECT_GT(errors.trans_err_pct, 1.01);
+  EXPECT_EQ(ToJson(errors)["segments"], 10);
+
+  // Without scale error and rotation: zero.
+  const KittiOdometryErrors exact = EvaluateKittiOdometry(gt, gt, KittiOdometryOptions());
+  EXPECT_DOUBLE_EQ(exact.trans_err_pct, 0.0);
+  EXPECT_DOUBLE_EQ(exact.rot_err_deg_per_m, 0.0);
+}
+
+TEST(KittiOdometry, ShortSequencesHaveNoSegmentsAndOptionsAreChecked) {
+  Trajectory gt;
+  for (int k = 0; k < 51; ++k) gt.push_back({0.1 * k, Rigid3d(Eigen::Matrix3d::Identity(), Eigen::Vector3d(k, 0, 0))});
+  const KittiOdometryErrors errors = EvaluateKittiOdometry(gt, gt, KittiOdometryOptions());
+  EXPECT_EQ(errors.segments, 0);
+  EXPECT_TRUE(std::isnan(errors.trans_err_pct));
+  EXPECT_TRUE(ToJson(errors)["trans_err_pct"].is_null());
+  KittiOdometryOptions shorter;
+  shorter.segment_lengths_m = {10, 20};
+  // i + 11 <= 50: i = 0, 10, 20, 30; i + 21 <= 50: i = 0, 10, 20.
+  EXPECT_EQ(EvaluateKittiOdometry(gt, gt, shorter).segments, 4 + 3);
+  shorter.segment_lengths_m = {};
+  EXPECT_THROW(EvaluateKittiOdometry(gt, gt, shorter), ConfigError);
+  shorter.segment_lengths_m = {-1};
+  EXPECT_THROW(EvaluateKittiOdometry(gt, gt, shorter), ConfigError);
 }
 
 }  // namespace

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <set>
 
 #include "common/json_reader.h"
 #include "common/options.h"
 #include "common/random.h"
 #include "experiments/trial_result.h"
+#include "frontend/frontend_options.h"
+#include "frontend/image_sequence.h"
 #include "methods/pose_tracker.h"
 
 namespace slt {
@@ -176,7 +179,7 @@ PlotSpec ReadPlot(const nlohmann::json& j, const std::string& where, const std::
 std::vector<PlotSpec> DefaultPlots(const ExperimentConfig& c) {
   std::vector<PlotSpec> plots;
   PlotSpec p;
-  if (c.sweep.size() == 1) {
+  if (c.sweep.size() == 1 && c.datasets.empty()) {  // datasets: categories, no sweep curve
     p.kind = "sweep";
     p.file = c.name + ".png";
     plots.push_back(p);
@@ -259,6 +262,31 @@ nlohmann::json ToJson(const SweepAxis& a) {
   return {{"parameter", a.parameter}, {"values", a.values}, {"label", a.label}};
 }
 
+DatasetSpec ReadDataset(const nlohmann::json& j, const std::string& where, const std::string& key) {
+  if (!j.is_object()) ThrowOptionError(where, "", key, std::string("expected {\"path\": ..}, got ") + j.type_name());
+  JsonReader reader(j, where, key);
+  DatasetSpec d;
+  reader.Get("path", &d.path).Get("label", &d.label).Get("layout", &d.layout);
+  reader.Get("first_frame", &d.first_frame).Get("end_frame", &d.end_frame).Get("ground_truth", &d.ground_truth);
+  reader.RejectUnknownKeys();
+  if (d.path.empty()) reader.Fail("path", "missing: the sequence folder");
+  try {
+    DatasetLayoutFromName(d.layout);
+  } catch (const std::invalid_argument& e) {
+    reader.Fail("layout", e.what());
+  }
+  if (d.first_frame < 0) reader.Fail("first_frame", "must be >= 0");
+  if (d.end_frame != -1 && d.end_frame <= d.first_frame) reader.Fail("end_frame", "must be > first_frame, or -1 (to the end)");
+  if (d.label.empty()) d.label = std::filesystem::path(d.path).lexically_normal().filename().string();
+  if (d.label.empty()) d.label = std::filesystem::path(d.path).lexically_normal().parent_path().filename().string();
+  return d;
+}
+
+nlohmann::json ToJson(const DatasetSpec& d) {
+  return {{"path", d.path},         {"label", d.label},         {"layout", d.layout},
+          {"first_frame", d.first_frame}, {"end_frame", d.end_frame}, {"ground_truth", d.ground_truth}};
+}
+
 nlohmann::json ToJson(const OrderingCheck& o) { return {{"better", o.better}, {"worse", o.worse}, {"at", o.at}}; }
 
 nlohmann::json ToJson(const PlotSpec& p) { return PlotSchema().ToJson(p); }
@@ -279,12 +307,45 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
     if (!sim->is_object()) reader.Fail("simulation", std::string("expected an object, got ") + sim->type_name());
     c.simulation = *sim;
   }
+  if (const nlohmann::json* datasets = reader.Find("datasets")) {
+    if (!datasets->is_array() || datasets->empty()) reader.Fail("datasets", "expected a non-empty array of {\"path\", ...}");
+    for (size_t i = 0; i < datasets->size(); ++i) c.datasets.push_back(ReadDataset((*datasets)[i], where, Indexed("datasets", i)));
+    for (size_t i = 0; i < c.datasets.size(); ++i) {
+      for (size_t k = 0; k < i; ++k) {
+        if (c.datasets[k].label == c.datasets[i].label) {
+          ThrowOptionError(where, Indexed("datasets", i), "label", "'" + c.datasets[i].label + "' used twice");
+        }
+      }
+    }
+    if (reader.Has("simulation")) reader.Fail("simulation", "not with \"datasets\" (a run is on recorded or on simulated data)");
+    if (c.trials != 1) reader.Fail("trials", "must be 1 with \"datasets\" (a recorded sequence has no random draws)");
+    SweepAxis axis;
+    axis.parameter = axis.label = "dataset";
+    for (const DatasetSpec& d : c.datasets) axis.values.push_back(d.label);
+    c.sweep.push_back(axis);
+    // config.json writes this axis (for the plots); reading it back, it must be just that.
+    if (const nlohmann::json* sweep = reader.Find("sweep")) {
+      if (*sweep != nlohmann::json::array({ToJson(axis)})) {
+        reader.Fail("sweep", "not with \"datasets\" (the datasets are the sweep)");
+      }
+    }
+  }
+  if (const nlohmann::json* frontend = reader.Find("frontend")) {
+    if (!frontend->is_object()) reader.Fail("frontend", std::string("expected an object, got ") + frontend->type_name());
+    c.frontend = *frontend;
+    try {
+      FrontEndOptionsFromJson(c.frontend, where);
+    } catch (const ConfigError& e) {
+      // "frontend: key 'x': reason" -> "<where>: key 'frontend.x': reason".
+      RethrowUnder(e, where, "frontend", "");
+    }
+  }
   if (c.simulation.contains("seed")) {
     ThrowOptionError(where, "simulation", "seed", "set by the experiment (trial k uses TrialSeed(seed, k)); use the top-level 'seed'");
   }
   ParseSimulation(c.simulation, where, "");
 
-  if (const nlohmann::json* sweep = reader.Find("sweep")) {
+  if (const nlohmann::json* sweep = c.datasets.empty() ? reader.Find("sweep") : nullptr) {
     if (!sweep->is_array()) reader.Fail("sweep", "expected an array of {\"parameter\", \"values\"}");
     if (sweep->size() > 2) reader.Fail("sweep", "at most 2 swept parameters");
     for (size_t i = 0; i < sweep->size(); ++i) c.sweep.push_back(ReadAxis((*sweep)[i], where, Indexed("sweep", i)));
@@ -347,6 +408,11 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
   reader.Find("resolved");  // output only (ResolvedConfigJson): ignored on input
   reader.RejectUnknownKeys();
 
+  if (!c.datasets.empty()) {
+    // Frame counts are known when the datasets are opened; errors are read at the last frame.
+    if (c.metrics_frame != -1) reader.Fail("metrics_frame", "must be \"last\" with \"datasets\"");
+    return c;
+  }
   // Every sweep point must give a valid simulation, and the metrics frame must exist in it.
   const std::vector<SweepPoint> points = ExpandSweep(c.sweep);
   for (const SweepPoint& point : points) {
@@ -379,12 +445,17 @@ nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
   j["title"] = c.title;
   j["trials"] = c.trials;
   j["seed"] = c.seed;
-  j["simulation"] = c.simulation;
   const auto array_of = [](const auto& items) {
     nlohmann::json array = nlohmann::json::array();
     for (const auto& item : items) array.push_back(ToJson(item));
     return array;
   };
+  if (c.datasets.empty()) {
+    j["simulation"] = c.simulation;
+  } else {
+    j["datasets"] = array_of(c.datasets);
+    j["frontend"] = c.frontend;
+  }
   j["sweep"] = array_of(c.sweep);
   j["methods"] = array_of(c.methods);
   if (c.metrics_frame < 0) {
@@ -418,6 +489,10 @@ nlohmann::json ResolvedConfigJson(const ExperimentConfig& c) {
   for (size_t p = 0; p < points.size(); ++p) {
     nlohmann::json values = nlohmann::json::object();
     for (size_t a = 0; a < c.sweep.size(); ++a) values[c.sweep[a].parameter] = points[p].values[a];
+    if (!c.datasets.empty()) {
+      resolved["points"].push_back({{"point", p}, {"values", values}, {"dataset", ToJson(c.datasets[p])}});
+      continue;
+    }
     nlohmann::json sim = SimulationConfigToJson(TrialSimulation(c, points[p], 0));
     sim["seed"] = "TrialSeed(seed, trial)";
     resolved["points"].push_back({{"point", p}, {"values", values}, {"simulation", sim}});

@@ -69,6 +69,17 @@ struct OrderingCheck {
   nlohmann::json at = nlohmann::json::object();
 };
 
+// A recorded stereo sequence (KITTI or EuRoC layout, frontend/image_sequence.h) run through the
+// image front end instead of a simulation (docs/datasets.md).
+struct DatasetSpec {
+  std::string path;          // the sequence folder, relative to the working directory
+  std::string label;         // its id in every output; defaults to the folder's name
+  std::string layout = "auto";  // auto, asl (= euroc) or kitti
+  int first_frame = 0;       // stereo pairs [first_frame, end_frame)
+  int end_frame = -1;        // -1 = to the end
+  std::string ground_truth;  // overrides the dataset's own ground truth file ("" = its own)
+};
+
 struct ExperimentConfig {
   std::string name = "experiment";  // output directory name: results/<name>
   std::string title;                // defaults to name
@@ -89,6 +100,11 @@ struct ExperimentConfig {
   std::vector<PlotSpec> plots;  // defaults follow the sweep and the curves/trajectory flags
   // The paper's orderings, as pairs; summary.md then lists the full ordering at every point.
   std::vector<OrderingCheck> expect_better;
+  // Recorded sequences instead of the simulation: then "simulation" and "sweep" must be absent,
+  // trials is 1 (a recorded sequence has no random draws), and the sweep is one axis
+  // "dataset" whose values are the datasets' labels, so that tables and plots group by dataset.
+  std::vector<DatasetSpec> datasets;
+  nlohmann::json frontend = nlohmann::json::object();  // front-end options (docs/frontend.md)
 };
 
 // Reads a config. `where` names the file in errors. "methods": "all" (or absent) expands to

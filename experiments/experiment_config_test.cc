@@ -219,5 +219,43 @@ TEST(FormatValue, NumbersInShortestFormStringsAsIs) {
   EXPECT_EQ(FormatValue(json(true)), "true");
 }
 
+TEST(ExperimentConfig, DatasetsAreTheSweep) {
+  const ExperimentConfig c = ExperimentConfigFromJson(
+      {{"trials", 1},
+       {"datasets", {{{"path", "data/kitti_00/"}}, {{"path", "x/euroc"}, {"label", "V1"}, {"end_frame", 20}}}},
+       {"methods", {"trifocal_line_ekf"}}},
+      "cfg.json");
+  ASSERT_EQ(c.datasets.size(), 2u);
+  EXPECT_EQ(c.datasets[0].label, "kitti_00");
+  EXPECT_EQ(c.datasets[1].label, "V1");
+  ASSERT_EQ(c.sweep.size(), 1u);
+  EXPECT_EQ(c.sweep[0].parameter, "dataset");
+  EXPECT_EQ(c.sweep[0].values, std::vector<json>({"kitti_00", "V1"}));
+  // Round trip.
+  const ExperimentConfig back = ExperimentConfigFromJson(ExperimentConfigToJson(c), "back.json");
+  EXPECT_EQ(ExperimentConfigToJson(back), ExperimentConfigToJson(c));
+}
+
+TEST(ExperimentConfig, DatasetErrorsNameTheKey) {
+  const json one = {{{"path", "d"}}};
+  EXPECT_EQ(ErrorOf({{"datasets", one}}), "cfg.json: key 'trials': must be 1 with \"datasets\" (a recorded sequence has no random draws)");
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", json::array()}}),
+            "cfg.json: key 'datasets': expected a non-empty array of {\"path\", ...}");
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", {{{"label", "x"}}}}}), "cfg.json: key 'datasets[0].path': missing: the sequence folder");
+  EXPECT_NE(ErrorOf({{"trials", 1}, {"datasets", {{{"path", "d"}, {"layout", "tum"}}}}}).find("key 'datasets[0].layout'"),
+            std::string::npos);
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", {{{"path", "d"}, {"pth", "d"}}}}}), "cfg.json: key 'datasets[0].pth': unknown key");
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", {{{"path", "a/d"}}, {{"path", "b/d"}}}}}),
+            "cfg.json: key 'datasets[1].label': 'd' used twice");
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", one}, {"simulation", json::object()}}),
+            "cfg.json: key 'simulation': not with \"datasets\" (a run is on recorded or on simulated data)");
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", one}, {"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {1}}}}}}),
+            "cfg.json: key 'sweep': not with \"datasets\" (the datasets are the sweep)");
+  EXPECT_EQ(ErrorOf({{"trials", 1}, {"datasets", one}, {"metrics_frame", 3}}),
+            "cfg.json: key 'metrics_frame': must be \"last\" with \"datasets\"");
+  EXPECT_NE(ErrorOf({{"trials", 1}, {"datasets", one}, {"frontend", {{"detektion", 1}}}}).find("cfg.json: key 'frontend.detektion'"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace slt

@@ -328,12 +328,19 @@ std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<Su
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   const std::vector<int> metrics = TableMetrics(config);
   std::string md = "# " + config.title + "\n\n";
-  md += std::to_string(config.trials) + " trials per method and sweep point (trial k simulates with seed TrialSeed(" +
-        std::to_string(config.seed) + ", k), the same for every method and sweep value). Errors: the accumulated error "
-        "of the estimated left-camera pose against the ground truth at " + MetricsFrameText(config) +
-        " (frames count from 0; alignment none). Each metric: mean, median and the 95 % interval "
-        "[2.5th, 97.5th percentile] over trials (linear interpolation between order statistics). "
-        "Times: wall time of one Track() call.\n\n";
+  if (config.datasets.empty()) {
+    md += std::to_string(config.trials) + " trials per method and sweep point (trial k simulates with seed TrialSeed(" +
+          std::to_string(config.seed) + ", k), the same for every method and sweep value). Errors: the accumulated error "
+          "of the estimated left-camera pose against the ground truth at " + MetricsFrameText(config) +
+          " (frames count from 0; alignment none). Each metric: mean, median and the 95 % interval "
+          "[2.5th, 97.5th percentile] over trials (linear interpolation between order statistics). "
+          "Times: wall time of one Track() call.\n\n";
+  } else {
+    md += "Recorded sequences through the image front end (docs/datasets.md), one run each. Errors: the estimated "
+          "left-camera poses against the dataset's ground truth, re-expressed from the first frame run (alignment "
+          "none). Times: wall time of one Track() call (the front end's per-stage times are in track_images' "
+          "summary).\n\n";
+  }
   md += "| Method |";
   std::string rule = "|---|";
   for (const SweepAxis& a : config.sweep) {

@@ -13,6 +13,9 @@
 #include "common/random.h"
 #include "evaluation/consistency.h"
 #include "evaluation/statistics.h"
+#include "frontend/frontend_options.h"
+#include "frontend/image_sequence.h"
+#include "frontend/image_tracking.h"
 #include "methods/pose_tracker.h"
 #include "simulator/simulator.h"
 
@@ -72,24 +75,14 @@ std::string DescribeJob(const ExperimentConfig& config, const std::vector<SweepP
   return s;
 }
 
-TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
-  const MethodSpec& method = config.methods[job.method];
-  const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
-  const SimulatedSequence sim = Simulate(sim_config);
-  const StereoSequence& sequence = sim.sequence;
+namespace {
 
-  TrialResult r;
-  r.method_index = job.method;
-  r.point_index = job.point;
-  r.trial = job.trial;
-  r.seed = sim_config.seed;
-  r.frames = static_cast<int>(sequence.frames.size());
-  r.metrics_frame = MetricsFrameFor(config, r.frames);
-
-  std::unique_ptr<PoseTracker> tracker =
-      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
-  const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
-
+// The metrics of one run from its per-frame tracker outputs (with the frame times and the wall
+// time of each Track() call) against the ground truth (empty: only the run's own metrics).
+void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth, const std::vector<double>& frame_times,
+                 const std::vector<TrackedFrame>& run, TrialResult* r) {
+  r->frames = static_cast<int>(run.size());
+  r->metrics_frame = MetricsFrameFor(config, r->frames);
   Trajectory estimate;
   estimate.reserve(run.size());
   std::vector<double> times_us;
@@ -115,13 +108,13 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
     if (out.status == TrackingStatus::kDegraded) ++degraded;
     has_covariance = has_covariance && out.has_covariance;
     covariances.push_back(out.covariance);
-    r.finite = r.finite && Finite(out.cam_from_world);
-    estimate.push_back({sequence.frames[k].time, out.cam_from_world.Inverse()});
+    r->finite = r->finite && Finite(out.cam_from_world);
+    estimate.push_back({frame_times[k], out.cam_from_world.Inverse()});
   }
 
-  auto& m = r.metrics;
+  auto& m = r->metrics;
   m.fill(std::numeric_limits<double>::quiet_NaN());
-  const double n = std::max<double>(1.0, static_cast<double>(sequence.frames.size()));
+  const double n = std::max<double>(1.0, static_cast<double>(run.size()));
   double time_sum = 0.0;
   for (double t : times_us) time_sum += t;
   m[kTimeMeanUs] = time_sum / n;
@@ -143,11 +136,12 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   m[kFeaturesDegenerate] = degenerate / n;
   m[kFeaturesOutsideGate] = outside_gate / n;
   m[kDegradedFrames] = degraded;
-  m[kPathLengthM] = PathLength(sim.ground_truth);
-  if (r.finite && !estimate.empty()) {
+  if (!ground_truth.empty()) m[kPathLengthM] = PathLength(ground_truth);
+  if (r->finite && !estimate.empty() && !ground_truth.empty()) {
     EvaluationOptions options;  // alignment none: both worlds are the first left camera
-    const TrajectoryErrors errors = EvaluateTrajectory(sim.ground_truth, estimate, options);
-    const FrameError& at = ErrorAtFrame(errors.per_frame, r.metrics_frame);
+    const TrajectoryErrors errors = EvaluateTrajectory(ground_truth, estimate, options);
+    // Recorded ground truth has its own rate (EuRoC: 200 Hz): there the last frame.
+    const FrameError& at = config.datasets.empty() ? ErrorAtFrame(errors.per_frame, r->metrics_frame) : errors.Final();
     m[kRotErrDeg] = at.rot_err_deg;
     m[kTransErrM] = at.trans_err_m;
     m[kFinalRotErrDeg] = errors.Final().rot_err_deg;
@@ -160,23 +154,79 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
       m[kRpeTransM] = errors.rpe_trans_m.rmse;
       m[kRpeRotDeg] = errors.rpe_rot_deg.rmse;
     }
-    m[kEndGapM] = (estimate.back().world_from_cam.translation - estimate.front().world_from_cam.translation).norm();
-    if (m[kPathLengthM] > 0.0) m[kDriftPct] = 100.0 * m[kEndGapM] / m[kPathLengthM];
-    if (config.per_frame_curves) r.curve = errors.per_frame;
+    if (config.per_frame_curves) r->curve = errors.per_frame;
     if (has_covariance) {
       // The first frame defines the world: its covariance is zero and it is skipped.
       const ConsistencyErrors consistency =
-          EvaluateConsistency(sim.ground_truth, estimate, covariances, options.max_time_diff_s);
+          EvaluateConsistency(ground_truth, estimate, covariances, options.max_time_diff_s);
       m[kNees] = consistency.nees.mean;
       m[kNeesRot] = consistency.nees_rot.mean;
       m[kNeesPos] = consistency.nees_pos.mean;
       m[kBeyond3SigmaPct] = 100.0 * consistency.beyond_3sigma_fraction;
     }
   }
-  if (job.trial < config.save_trajectories) {
-    r.ground_truth = sim.ground_truth;
-    r.estimate = std::move(estimate);
+  if (r->finite && !estimate.empty()) {
+    m[kEndGapM] = (estimate.back().world_from_cam.translation - estimate.front().world_from_cam.translation).norm();
+    if (m[kPathLengthM] > 0.0) m[kDriftPct] = 100.0 * m[kEndGapM] / m[kPathLengthM];
   }
+  if (r->trial < config.save_trajectories) {
+    r->ground_truth = ground_truth;
+    r->estimate = std::move(estimate);
+  }
+}
+
+// A recorded sequence: the image front end and the tracker frame by frame (ImageTracker), the
+// ground truth of the frames run, re-expressed from the first of them.
+void RunDatasetTrial(const ExperimentConfig& config, const MethodSpec& method, const DatasetSpec& dataset,
+                     TrialResult* r) {
+  const std::unique_ptr<StereoImageSource> source =
+      OpenStereoImages(dataset.path, DatasetLayoutFromName(dataset.layout), dataset.ground_truth);
+  const int first = std::min(dataset.first_frame, source->size() - 1);
+  const int end = dataset.end_frame < 0 ? source->size() : std::min(dataset.end_frame, source->size());
+  std::unique_ptr<PoseTracker> tracker =
+      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
+  StereoFrontEnd front_end(FrontEndOptionsFromJson(config.frontend, config.name + ": frontend"), source->rig());
+  ImageTracker image_tracker(front_end, *tracker, source->rig());
+  std::vector<TrackedFrame> run;
+  std::vector<double> frame_times;
+  for (int k = first; k < end; ++k) {
+    const StereoImages images = source->Read(k);
+    const ImageTrackingStep step = image_tracker.Step(images.left, images.right, images.time);
+    run.push_back({step.output, 1e6 * step.tracker_seconds});
+    frame_times.push_back(images.time);
+  }
+  // The ground truth over the frames run (within the association window of their times).
+  Trajectory ground_truth;
+  const double slack = 0.01;
+  for (const TimedPose& pose : GroundTruthFromStart(source->ground_truth(), source->Time(first))) {
+    if (pose.time >= frame_times.front() - slack && pose.time <= frame_times.back() + slack) ground_truth.push_back(pose);
+  }
+  FillMetrics(config, ground_truth, frame_times, run, r);
+}
+
+}  // namespace
+
+TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
+  const MethodSpec& method = config.methods[job.method];
+  TrialResult r;
+  r.method_index = job.method;
+  r.point_index = job.point;
+  r.trial = job.trial;
+  if (!config.datasets.empty()) {
+    RunDatasetTrial(config, method, config.datasets[job.point], &r);
+    return r;
+  }
+  const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
+  const SimulatedSequence sim = Simulate(sim_config);
+  const StereoSequence& sequence = sim.sequence;
+  r.seed = sim_config.seed;
+
+  std::unique_ptr<PoseTracker> tracker =
+      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
+  const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
+  std::vector<double> frame_times;
+  for (const StereoFrame& frame : sequence.frames) frame_times.push_back(frame.time);
+  FillMetrics(config, sim.ground_truth, frame_times, run, &r);
   return r;
 }
 

@@ -1,16 +1,19 @@
 #include "render/sequence_renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <exception>
 #include <filesystem>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 #include "dataset/euroc.h"
+#include "geometry/distortion.h"
 #include "geometry/se3.h"
 #include "render/image_formation.h"
 #include "simulator/random_draws.h"
@@ -18,7 +21,39 @@
 namespace slt {
 
 SequenceRenderer::SequenceRenderer(const SimulatedSequence& sequence, const SimulationConfig& config)
-    : sequence_(sequence), config_(config), rasterizer_(sequence.surfaces) {}
+    : sequence_(sequence), config_(config), rasterizer_(sequence.surfaces) {
+  const StereoRig& rig = sequence_.true_rig;
+  const RadialTangential& distortion = config_.images.distortion;
+  for (int camera = 0; camera < 2; ++camera) {
+    Canvas& canvas = canvas_[camera];
+    const PinholeCamera& k = camera == 0 ? rig.left : rig.right;
+    canvas.camera = k;
+    canvas.width = rig.width;
+    canvas.height = rig.height;
+    if (IsZero(distortion)) continue;
+    cv::Mat map(rig.height, rig.width, CV_32FC2);
+    double lo_u = 0.0, lo_v = 0.0, hi_u = rig.width - 1.0, hi_v = rig.height - 1.0;
+    for (int v = 0; v < rig.height; ++v) {
+      for (int u = 0; u < rig.width; ++u) {
+        const Eigen::Vector2d pinhole =
+            k.NormalizedToPixel(UndistortNormalized(k.PixelToNormalized(Eigen::Vector2d(u, v)), distortion));
+        map.at<cv::Vec2f>(v, u) = cv::Vec2f(static_cast<float>(pinhole.x()), static_cast<float>(pinhole.y()));
+        lo_u = std::min(lo_u, pinhole.x());
+        lo_v = std::min(lo_v, pinhole.y());
+        hi_u = std::max(hi_u, pinhole.x());
+        hi_v = std::max(hi_v, pinhole.y());
+      }
+    }
+    // A canvas covering every sampled position with two pixels to spare (bilinear reads one).
+    const int origin_u = static_cast<int>(std::floor(lo_u)) - 2, origin_v = static_cast<int>(std::floor(lo_v)) - 2;
+    canvas.width = static_cast<int>(std::ceil(hi_u)) + 3 - origin_u;
+    canvas.height = static_cast<int>(std::ceil(hi_v)) + 3 - origin_v;
+    canvas.camera.cx -= origin_u;
+    canvas.camera.cy -= origin_v;
+    map -= cv::Scalar(origin_u, origin_v);
+    canvas.map = map;
+  }
+}
 
 Rigid3d SequenceRenderer::CamFromWorld(double frame, int camera) const {
   const Trajectory& gt = sequence_.ground_truth;
@@ -35,24 +70,31 @@ Rigid3d SequenceRenderer::CamFromWorld(double frame, int camera) const {
   return camera == 0 ? left_from_world : sequence_.true_rig.right_from_left * left_from_world;
 }
 
-cv::Mat SequenceRenderer::Radiance(int frame, int camera) const {
-  const StereoRig& rig = sequence_.true_rig;
-  const PinholeCamera& intrinsics = camera == 0 ? rig.left : rig.right;
+cv::Mat SequenceRenderer::PinholeRadiance(int frame, int camera) const {
+  const Canvas& canvas = canvas_[camera];
   const ImageConfig& images = config_.images;
   cv::Mat radiance;
   if (images.motion_blur_samples <= 1 || images.exposure_time_frames == 0.0) {
-    rasterizer_.Render(intrinsics, rig.width, rig.height, CamFromWorld(frame, camera), &radiance);
+    rasterizer_.Render(canvas.camera, canvas.width, canvas.height, CamFromWorld(frame, camera), &radiance);
     return radiance;
   }
   // Poses at the middles of equal parts of the exposure, centred on the frame time: the blur is
   // symmetric about the frame's pose, so edges stay centred on the ground-truth lines.
-  cv::Mat sum = cv::Mat::zeros(rig.height, rig.width, CV_32FC1), one;
+  cv::Mat sum = cv::Mat::zeros(canvas.height, canvas.width, CV_32FC1), one;
   for (int j = 0; j < images.motion_blur_samples; ++j) {
     const double offset = ((j + 0.5) / images.motion_blur_samples - 0.5) * images.exposure_time_frames;
-    rasterizer_.Render(intrinsics, rig.width, rig.height, CamFromWorld(frame + offset, camera), &one);
+    rasterizer_.Render(canvas.camera, canvas.width, canvas.height, CamFromWorld(frame + offset, camera), &one);
     sum += one;
   }
   return sum / static_cast<double>(images.motion_blur_samples);
+}
+
+cv::Mat SequenceRenderer::Radiance(int frame, int camera) const {
+  cv::Mat radiance = PinholeRadiance(frame, camera);
+  if (canvas_[camera].map.empty()) return radiance;
+  cv::Mat distorted;
+  cv::remap(radiance, distorted, canvas_[camera].map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  return distorted;
 }
 
 cv::Mat SequenceRenderer::Image(int frame, int camera) const {
@@ -120,6 +162,7 @@ void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequenc
     info.width = rig.width;
     info.height = rig.height;
     info.intrinsics = camera == 0 ? rig.left : rig.right;
+    info.distortion = config.images.distortion;
     WriteEurocCameraYaml((work / camera_names[camera] / "sensor.yaml").string(), info);
     WriteEurocImageList((work / camera_names[camera] / "data.csv").string(), timestamps);
   }

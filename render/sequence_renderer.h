@@ -22,7 +22,11 @@ class SequenceRenderer {
   SequenceRenderer(const SimulatedSequence& sequence, const SimulationConfig& config);
 
   // The scene radiance (CV_32FC1) seen by `camera` (0 = left, 1 = right) at frame `frame`,
-  // averaged over config.images.motion_blur_samples poses spread over the exposure.
+  // averaged over config.images.motion_blur_samples poses spread over the exposure. With lens
+  // distortion (config.images.distortion), the pinhole radiance is rendered on a canvas large
+  // enough for the whole distorted field of view and resampled (bilinear) at the undistorted
+  // position of every pixel: pixel (u, v) sees what the pinhole camera sees at
+  // K undistort(K^-1 (u, v)) (geometry/distortion.h).
   cv::Mat Radiance(int frame, int camera) const;
   // The 8-bit grey image (CV_8UC1).
   cv::Mat Image(int frame, int camera) const;
@@ -32,9 +36,20 @@ class SequenceRenderer {
   const SurfaceRasterizer& Rasterizer() const { return rasterizer_; }
 
  private:
+  // The pinhole radiance of `camera` on its canvas (the image itself without distortion).
+  cv::Mat PinholeRadiance(int frame, int camera) const;
+
   const SimulatedSequence& sequence_;
   const SimulationConfig& config_;
   SurfaceRasterizer rasterizer_;
+  // With distortion, per camera: the canvas camera and size, and for every image pixel its
+  // position on the canvas (CV_32FC2).
+  struct Canvas {
+    PinholeCamera camera;
+    int width = 0, height = 0;
+    cv::Mat map;
+  };
+  Canvas canvas_[2];
 };
 
 // Writes DIR/mav0/cam0 and cam1 (data/<timestamp_ns>.png, data.csv, sensor.yaml) and

@@ -231,7 +231,26 @@ const OptionSchema<ImageConfig>& ImageSchema() {
           .Field("exposure_time_frames", &C::exposure_time_frames, InRange(0.0, 1.0),
                  "open shutter (fraction of the frame interval)")
           .Field("read_noise", &C::read_noise, FiniteAtLeast(0.0), "Gaussian noise sigma (grey levels)")
-          .Field("shot_noise", &C::shot_noise, FiniteAtLeast(0.0), "photon noise variance per grey level");
+          .Field("shot_noise", &C::shot_noise, FiniteAtLeast(0.0), "photon noise variance per grey level")
+          .Custom(
+              "distortion",
+              [](JsonReader& r, C* c) {
+                const nlohmann::json* v = r.Find("distortion");
+                if (v == nullptr) return;
+                if (!v->is_array() || v->size() != 4) r.Fail("distortion", "expected [k1, k2, p1, p2]");
+                for (int i = 0; i < 4; ++i) {
+                  if (!(*v)[i].is_number()) r.Fail("distortion", "expected [k1, k2, p1, p2] (numbers)");
+                  c->distortion[i] = (*v)[i].get<double>();
+                }
+              },
+              [](const C& c) { return nlohmann::json(c.distortion); }, "[k1, k2, p1, p2], |k| < 1",
+              "radial-tangential lens distortion of both cameras (zeros: none)",
+              [](const C& c) {
+                for (const double k : c.distortion) {
+                  if (!(std::abs(k) < 1.0)) return std::string("coefficients must be finite and within (-1, 1)");
+                }
+                return std::string();
+              });
   return schema;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "geometry/camera.h"
+#include "geometry/distortion.h"
 
 namespace slt {
 
@@ -151,6 +152,9 @@ struct ImageConfig {
   double exposure_time_frames = 0.5; // open shutter, as a fraction of the frame interval
   double read_noise = 1.5;           // standard deviation of the Gaussian noise, grey levels
   double shot_noise = 0.03;          // photon noise: variance = read_noise^2 + shot_noise * level
+  // Radial-tangential lens distortion [k1, k2, p1, p2] of both cameras (geometry/distortion.h),
+  // written into sensor.yaml; the ground-truth observations stay those of the pinhole rig.
+  RadialTangential distortion{};
 };
 
 // Per-stream base seeds; an unset one follows SimulationConfig::seed.

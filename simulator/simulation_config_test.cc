@@ -71,7 +71,7 @@ TEST(SimulationConfig, EveryFieldRoundTrips) {
   c.observation = {true, 20.0, 0.1, true};
   c.noise = {NoiseModel::kGaussian, 1.5, EndpointModel::kSliding, 0.1};
   c.outliers.rate = 0.05;
-  c.images = {0.1, 0.3, 1.0, 4, 0.8, 3.0, 0.1};
+  c.images = {0.1, 0.3, 1.0, 4, 0.8, 3.0, 0.1, {-0.2, 0.05, 0.001, -0.002}};
   const nlohmann::json j = SimulationConfigToJson(c);
   EXPECT_EQ(j["seeds"]["noise"], 7);
   EXPECT_TRUE(j["seeds"]["scene"].is_null());
@@ -160,6 +160,10 @@ TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"images": {"vignetting": 1.5}})"), "sim.json: key 'images.vignetting': must be in [0, 1)");
   EXPECT_EQ(ConfigErrorOf(R"({"images": {"motion_blur_samples": 0}})"),
             "sim.json: key 'images.motion_blur_samples': must be in [1, 64]");
+  EXPECT_EQ(ConfigErrorOf(R"({"images": {"distortion": [0.1, 0.2, 0.3]}})"),
+            "sim.json: key 'images.distortion': expected [k1, k2, p1, p2]");
+  EXPECT_EQ(ConfigErrorOf(R"({"images": {"distortion": [0.1, 0.2, 0.3, 2]}})"),
+            "sim.json: key 'images.distortion': coefficients must be finite and within (-1, 1)");
   EXPECT_EQ(ConfigErrorOf(R"({"scene": 3})"), "sim.json: key 'scene': expected a JSON object, got number");
   EXPECT_NE(ConfigErrorOf(R"({"rig": {"width": -1}})").find("sim.json: key 'rig"), std::string::npos);
 }
