@@ -298,13 +298,13 @@ TEST_F(EndToEnd, OutputsAreCheckedBeforeTracking) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::is_fifo(Path("pipe")));
 
-  // evaluate: --out equal to --est is refused; metrics are never printed as null.
+  // evaluate: --out (--json) equal to --est is refused; metrics are never printed as null.
   r = RunCommand(track + " --output " + Path("t.tum"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string original_tum = ReadTextFile(Path("t.tum"));
   r = RunCommand(Bin("evaluate") + " --gt " + Path("t.tum") + " --est " + Path("t.tum") + " --out " + Path("t.tum"));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.output.find("--out " + Path("t.tum") + ": is also an input"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--json " + Path("t.tum") + ": is also an input"), std::string::npos) << r.output;
   EXPECT_EQ(ReadTextFile(Path("t.tum")), original_tum);
   std::ofstream(Path("far.tum")) << "0 1e308 0 0 0 0 0 1\n0.05 1e308 0 0 0 0 0 1\n";
   r = RunCommand(Bin("evaluate") + " --gt " + Path("t.tum") + " --est " + Path("far.tum"));

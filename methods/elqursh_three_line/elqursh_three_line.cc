@@ -167,7 +167,7 @@ class ElqurshThreeLineTracker final : public PoseTracker {
  private:
   // Makes `frame` the reference pair at the pose `ref_from_world`.
   void SetReference(const StereoFrame& frame, const Rigid3d& ref_from_world) {
-    model_.SetReference(frame);
+    reference_features_ = model_.SetReference(frame);
     ref_from_world_ = ref_from_world;
     lost_frames_ = 0;
   }
@@ -184,6 +184,7 @@ class ElqurshThreeLineTracker final : public PoseTracker {
   Rigid3d ref_from_world_;
   Rigid3d cam_from_world_;
   int lost_frames_ = 0;  // lost frames measured against the current reference
+  int reference_features_ = 0;  // stereo lines of the reference pair
 
   // Per-frame workspace, kept to avoid allocation.
   std::vector<MatchedLine> lines_;
@@ -240,12 +241,18 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
     cam_from_world_ = Rigid3d();
     SetReference(frame, cam_from_world_);
     out.status = TrackingStatus::kNewReference;
+    out.reason = StatusReason::kFirstFrame;
+    out.features_available = reference_features_;
     return out;
   }
   model_.SetCurrent(frame);
   CollectMatchedLines();
   const int available = static_cast<int>(lines_.size());
   out.features_available = available;
+  // The reference's lines not matched in both images of this pair, and the matched ones without
+  // a usable triangulation (degenerate or behind the rig).
+  out.features_unmatched = std::max(0, reference_features_ - model_.NumFeatures());
+  out.features_degenerate = model_.NumFeatures() - available;
   candidates_.Build(directions_, tolerances_);
   bool accepted = false;
   if (!candidates_.empty()) {
@@ -260,6 +267,7 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
                result_.model.translation.allFinite();
     if (accepted) out.features_used = consensus;
   }
+  out.features_outside_gate = available - out.features_used;
   if (accepted) {
     lost_frames_ = 0;
     cam_from_world_ = result_.model * ref_from_world_;
@@ -271,6 +279,11 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
     // enough lines of its own while too few of the reference's are still seen, or a reference
     // that has failed for max_lost_frames frames (its configurations do not work).
     out.status = TrackingStatus::kLost;
+    // Too few lines, no triplet that may be a primitive configuration (the rotation is not
+    // measured), or a consensus too small.
+    out.reason = available < options_.min_inliers ? StatusReason::kFewMeasurable
+                 : candidates_.empty()              ? StatusReason::kUnconstrained
+                                                    : StatusReason::kFewAgree;
     ++lost_frames_;
     const bool has_lines = model_.CurrentStereoFeatures() >= options_.min_inliers;
     if (has_lines && (available < options_.min_inliers || lost_frames_ > options_.max_lost_frames)) {
@@ -332,6 +345,11 @@ TrackerInfo ElqurshThreeLineInfo() {
   info.name = "elqursh_three_line";
   info.description = "Three-line relative pose with RANSAC, chained frame to frame (Elqursh & Elgammal, CVPR 2011)";
   info.create = Create;
+  info.list_options = [] {
+    std::vector<OptionDoc> docs;
+    ElqurshThreeLineOptionsSchema().List(ElqurshThreeLineOptions(), "", &docs);
+    return docs;
+  };
   info.minimum_lines = 3;
   info.needs_primitive_configurations = true;
   return info;

@@ -22,10 +22,6 @@ constexpr double kMinInlierFraction = 0.5;
 constexpr double kMaxNormalizedCost = 2.0;
 // The standard normal's 99.9 % quantile (of the Wilson-Hilferty bound in HealthyCost).
 constexpr double kStandardNormal999 = 3.09;
-// Below this ratio of the smallest to the largest eigenvalue of the measurement information the
-// used features do not constrain all six degrees of freedom of the pose (rounding level: an
-// exactly unobserved direction gives ~1e-16).
-constexpr double kMinRelativeInformation = 1e-9;
 // A frame whose update uses fewer than this fraction of the measurable features is reported
 // lost: when every segment is an outlier, a few of them still fit some pose by chance, and
 // that pose is no measurement of the camera (issue 21).

@@ -127,6 +127,26 @@ int LineSfmWindow::KnownLinesInNewest() {
   return count;
 }
 
+int LineSfmWindow::KnownLinesInBothImagesOfNewest() {
+  if (frames_.empty()) return 0;
+  // Mark the lines of the left image, then count the marked ones the right image sees (each
+  // once: counted lines get another mark).
+  const int mark = ++visit_;
+  for (const WindowObservation& o : frames_.back().images[0]) {
+    const auto it = lines_.find(o.id);
+    if (!o.outlier && it != lines_.end()) it->second.visit = mark;
+  }
+  const int counted = ++visit_;
+  int count = 0;
+  for (const WindowObservation& o : frames_.back().images[1]) {
+    const auto it = lines_.find(o.id);
+    if (o.outlier || it == lines_.end() || it->second.visit != mark) continue;
+    it->second.visit = counted;
+    ++count;
+  }
+  return count;
+}
+
 Rigid3d LineSfmWindow::Pose(int age) const { return PoseFromParameters(frames_[frames_.size() - 1 - age].pose); }
 
 void LineSfmWindow::SetNewestPose(const Rigid3d& cam_from_world) { PoseToParameters(cam_from_world, frames_.back().pose); }

@@ -107,6 +107,8 @@ class LineSfmWindow {
   TriangulationReport TriangulateNewLines();
   // Lines of the map the newest frame observes (in either image).
   int KnownLinesInNewest();
+  // Lines of the map the newest frame observes in both images.
+  int KnownLinesInBothImagesOfNewest();
 
   int NumFrames() const { return static_cast<int>(frames_.size()); }
   int NumLines() const { return static_cast<int>(lines_.size()); }

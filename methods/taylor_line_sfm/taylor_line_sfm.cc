@@ -28,13 +28,16 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
     counters_.lines_triangulated += t.triangulated;
     counters_.degenerate_triangulations += t.degenerate;
     out.status = TrackingStatus::kNewReference;
+    out.reason = StatusReason::kFirstFrame;
     out.features_available = t.triangulated;
+    known_lines_ = window_.NumLines();
     return out;
   }
 
   const Rigid3d previous = window_.Pose(0);
   window_.AddFrame(ExpSE3(velocity_) * previous, std::move(left), std::move(right));
   out.features_available = window_.KnownLinesInNewest();
+  out.features_unmatched = std::max(0, known_lines_ - window_.KnownLinesInBothImagesOfNewest());
   last_solve_ = window_.Solve();
   const WindowSolveReport& s = last_solve_;
   counters_.lines_too_few_observations += s.newest_lines_too_few_observations;
@@ -52,16 +55,20 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
     velocity_ = LogSE3(out.cam_from_world * window_.Pose(1).Inverse());
     out.status = TrackingStatus::kTracking;
     out.features_used = s.newest_lines;
+    out.features_outside_gate = out.features_available - out.features_used;
   } else {
     velocity_ *= options_.lost_velocity_decay;
     out.cam_from_world = ExpSE3(velocity_) * previous;
     window_.SetNewestPose(out.cam_from_world);
     out.status = TrackingStatus::kLost;
+    out.reason = out.features_available < 2 ? StatusReason::kFewMeasurable : StatusReason::kNoUpdate;
+    out.features_outside_gate = out.features_available;
     ++counters_.lost_frames;
   }
   const TriangulationReport t = window_.TriangulateNewLines();
   counters_.lines_triangulated += t.triangulated;
   counters_.degenerate_triangulations += t.degenerate;
+  if (out.status == TrackingStatus::kTracking) known_lines_ = window_.NumLines();
   return out;
 }
 
@@ -69,6 +76,11 @@ TrackerInfo TaylorLineSfmInfo() {
   TrackerInfo info;
   info.name = "taylor_line_sfm";
   info.description = "Line structure from motion over a sliding window, Ceres (Taylor & Kriegman, IEEE PAMI 1995)";
+  info.list_options = [] {
+    std::vector<OptionDoc> docs;
+    TaylorLineSfmOptionsSchema().List(TaylorLineSfmOptions(), "", &docs);
+    return docs;
+  };
   info.create = [](const nlohmann::json& json, const std::string& where) -> std::unique_ptr<PoseTracker> {
     JsonReader reader(json, where);
     TaylorLineSfmOptions options;

@@ -60,6 +60,9 @@ class TaylorLineSfmTracker final : public PoseTracker {
   LineSfmWindow window_;
   bool started_ = false;
   Vector6d velocity_ = Vector6d::Zero();  // Log(T_t T_{t-1}^-1)
+  // Lines of the map at the last tracked frame: those the current frame does not see in both
+  // images are reported as TrackerOutput::features_unmatched (kept while lost).
+  int known_lines_ = 0;
   Counters counters_;
   WindowSolveReport last_solve_;
   std::vector<LineObservation> sorted_;  // scratch of CollectWindowObservations
