@@ -255,11 +255,23 @@ def sliding_comparison(r):
 
 def focal_200(r):
     focal = max(r.values("focal_sweep", "focal_error_px"))
-    rots = [r.value("focal_sweep", m, "rot_err_deg_mean", focal_error_px=focal) for m in r.methods("focal_sweep")]
-    trans = [r.value("focal_sweep", m, "trans_err_m_mean", focal_error_px=focal) for m in r.methods("focal_sweep")]
-    return "%s–%s and %s–%s mm at frame 100 (`results/focal_sweep/`), against the paper's < %s and < %s; the methods agree to within %d %%" % (
-        sig(min(rots)), deg(max(rots)), sig(1000 * min(trans)), sig(1000 * max(trans)), deg(PAPER_FIG5[0]),
-        mm(PAPER_FIG5[1]), round(100.0 * max(max(rots) / min(rots), max(trans) / min(trans)) - 100.0))
+    methods = r.methods("focal_sweep")
+    rot = {m: r.value("focal_sweep", m, "rot_err_deg_mean", focal_error_px=focal) for m in methods}
+    trans = {m: r.value("focal_sweep", m, "trans_err_m_mean", focal_error_px=focal) for m in methods}
+    # The methods that agree (within 50 % of the median rotation error) give the band; any other
+    # is named with its own numbers, so that a method far off cannot hide in a wide band.
+    median = sorted(rot.values())[len(rot) // 2]
+    agree = [m for m in methods if abs(rot[m] - median) <= 0.5 * median]
+    others = [m for m in methods if m not in agree]
+    rots = [rot[m] for m in agree]
+    trans_agree = [trans[m] for m in agree]
+    text = "%s–%s and %s–%s mm at frame 100 (`results/focal_sweep/`), against the paper's < %s and < %s; %s agree to within %d %%" % (
+        sig(min(rots)), deg(max(rots)), sig(1000 * min(trans_agree)), sig(1000 * max(trans_agree)), deg(PAPER_FIG5[0]),
+        mm(PAPER_FIG5[1]), "all %d methods" % len(agree) if not others else "these %d methods" % len(agree),
+        round(100.0 * max(max(rots) / min(rots), max(trans_agree) / min(trans_agree)) - 100.0))
+    if others:
+        text += " (outside this band: %s)" % ", ".join("`%s` %s / %s mm" % (m, deg(rot[m]), sig(1000 * trans[m])) for m in others)
+    return text
 
 
 GENERATORS = {
