@@ -13,7 +13,7 @@ for target in stereo_lines trajectory config; do
   mkdir -p "$work/$target"
   echo "fuzz_smoke: ${target}_fuzzer for ${seconds} s"
   if ! (cd "$work" && "$OLDPWD/$build/bin/${target}_fuzzer" -max_total_time="$seconds" -timeout=10 \
-        -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 "$work/$target" "fuzz/corpus/$target" \
+        -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 "$work/$target" "$OLDPWD/fuzz/corpus/$target" \
         > "$work/$target.log" 2>&1); then
     tail -40 "$work/$target.log"
     echo "fuzz_smoke: ${target}_fuzzer found a problem; inputs and log in $work" >&2
