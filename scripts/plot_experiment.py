@@ -199,7 +199,7 @@ class Experiment:
 
     def is_closed_loop(self):
         points = self.config.get("resolved", {}).get("points", [])
-        return bool(points) and all(p["simulation"]["motion"]["type"] == "loop" for p in points)
+        return bool(points) and all("simulation" in p and p["simulation"]["motion"]["type"] == "loop" for p in points)
 
 
 def draw_series(panels, xs, rows, label, st, plot):
