@@ -84,6 +84,16 @@ void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
   }
 }
 
+void CheckOutputsBeforeWork(const std::vector<std::pair<std::string, std::string>>& outputs,
+                            std::vector<std::string> inputs) {
+  for (const auto& [flag, path] : outputs) {
+    if (path.empty()) continue;
+    RefuseOutputThatIsInput(flag, path, inputs);
+    CheckWritable(flag, path);
+    inputs.push_back(path);
+  }
+}
+
 void CheckWritable(const std::string& what, const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);

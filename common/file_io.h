@@ -9,6 +9,7 @@
 
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slt {
@@ -30,6 +31,12 @@ void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
 // again at once), opens a regular file for appending (nothing written), checks the permission
 // of a device or FIFO. Throws std::runtime_error "<what> <path>: cannot write (<why>)".
 void CheckWritable(const std::string& what, const std::string& path);
+
+// A program's outputs checked before its (possibly long) work: none may be one of `inputs` or
+// another output (RefuseOutputThatIsInput), and each must be writable (CheckWritable). `outputs`
+// are (flag, path) pairs; empty paths are skipped.
+void CheckOutputsBeforeWork(const std::vector<std::pair<std::string, std::string>>& outputs,
+                            std::vector<std::string> inputs);
 
 // Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and
 // rename, so readers never see a half-written file; an existing device or FIFO directly.

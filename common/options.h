@@ -273,6 +273,12 @@ class OptionSchema {
       }
     }
   }
+  // Every field with its default (`track --list-options` of a tracker with one schema).
+  std::vector<OptionDoc> Docs() const {
+    std::vector<OptionDoc> docs;
+    List(S(), "", &docs);
+    return docs;
+  }
   const std::vector<Entry>& entries() const { return entries_; }
 
  private:

@@ -1,6 +1,7 @@
 // A progress bar with an elapsed time and an ETA on stderr, for a program's long loops
 // (run_experiment's jobs): `[####......] 12/40  30.0%  elapsed 0:04  ETA 0:09`, redrawn at most
-// every 0.2 s, ended with a newline when done == total.
+// every 0.2 s, ended with a newline when done == total; `extra` is appended (track_images: frames
+// per second and lines).
 #pragma once
 
 #include <chrono>
@@ -11,7 +12,7 @@ namespace slt {
 
 class ProgressBar {
  public:
-  void Update(size_t done, size_t total) {
+  void Update(size_t done, size_t total, const std::string& extra = "") {
     const auto now = std::chrono::steady_clock::now();
     if (done < total && now - last_draw_ < std::chrono::milliseconds(200)) return;
     last_draw_ = now;
@@ -23,8 +24,8 @@ class ProgressBar {
     bar.resize(width, '.');
     std::string eta = "--:--";
     if (done > 0) eta = Clock(elapsed / static_cast<double>(done) * static_cast<double>(total - done));
-    std::fprintf(stderr, "\r[%s] %zu/%zu %5.1f%%  elapsed %s  ETA %s ", bar.c_str(), done, total, 100.0 * fraction,
-                 Clock(elapsed).c_str(), eta.c_str());
+    std::fprintf(stderr, "\r[%s] %zu/%zu %5.1f%%  elapsed %s  ETA %s %s", bar.c_str(), done, total, 100.0 * fraction,
+                 Clock(elapsed).c_str(), eta.c_str(), extra.c_str());
     if (done == total) std::fprintf(stderr, "\n");
     std::fflush(stderr);
   }

@@ -234,19 +234,6 @@ void AppendImage(const std::vector<LineObservation>& observations, std::string* 
   *out += "\n    ]";
 }
 
-// The per-frame rules of CheckStereoSequence; `previous_time` is the time of frame k - 1 (k > 0).
-void CheckFrame(const StereoFrame& frame, size_t k, double previous_time, const std::string& where) {
-  const std::string frame_path = Indexed("frames", k);
-  if (!std::isfinite(frame.time)) Fail(where, frame_path + ".time", "must be finite");
-  if (k > 0 && frame.time < previous_time) {
-    Fail(where, frame_path + ".time",
-         nlohmann::json(frame.time).dump() + " is before the previous frame's time " +
-             nlohmann::json(previous_time).dump());
-  }
-  CheckImage(frame.left, where, frame_path + ".left");
-  CheckImage(frame.right, where, frame_path + ".right");
-}
-
 }  // namespace
 
 StereoRig StereoRigFromJson(const nlohmann::json& object, const std::string& where, const std::string& path) {
@@ -533,7 +520,7 @@ StereoLinesWriter::~StereoLinesWriter() {
 }
 
 void StereoLinesWriter::Append(const StereoFrame& frame) {
-  CheckFrame(frame, frames_, previous_time_, path_);
+  CheckFrame(frame, frames_, frames_ > 0 ? &previous_time_ : nullptr, path_);
   buffer_.clear();
   buffer_ += frames_ == 0 ? "\n    {\"time\": " : ",\n    {\"time\": ";
   AppendNumber(frame.time, &buffer_);

@@ -12,13 +12,14 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <unistd.h>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
+#include "common/progress_bar.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
 #include "frontend/frontend_viz.h"
@@ -89,11 +90,8 @@ int main(int argc, char** argv) {
     const StereoRig& rig = source->rig();
     std::fprintf(stderr, "track_images: %s; frames %d to %d\n", source->Describe().c_str(), first, end - 1);
 
-    for (const std::string& out : {output, observations_path, log_path}) {
-      if (!out.empty() && std::filesystem::exists(out) && std::filesystem::equivalent(out, path)) {
-        throw std::runtime_error(out + ": would overwrite the input");
-      }
-    }
+    CheckOutputsBeforeWork({{"--output", output}, {"--save-observations", observations_path}, {"--log", log_path}},
+                           {path, config_path, tracker_config_path});
     std::optional<StereoLinesWriter> writer;
     if (!observations_path.empty()) writer.emplace(observations_path, rig);
     std::optional<FrontEndPictures> pictures;
@@ -105,7 +103,8 @@ int main(int argc, char** argv) {
     std::ostringstream log;
     log << "frame,time,status,lines,detected,added,lost,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms\n";
     const bool show_progress = progress_forced || ::isatty(STDERR_FILENO);
-    int counts[3] = {0, 0, 0};
+    int counts[kNumTrackingStatuses] = {};
+    ProgressBar progress;
     int detection_frames = 0;
     FrontEndStageTimes steady, detecting, total;
     int steady_frames = 0;
@@ -138,14 +137,12 @@ int main(int argc, char** argv) {
           << 1e3 * step.tracker_seconds << "," << 1e3 * read << "\n";
       if (show_progress) {
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const int done = k - first + 1, all = end - first;
-        const int bar = 30 * done / all;
-        std::fprintf(stderr, "\r[%.*s%*s] %d/%d  %.1f fps  %d lines ", bar, "==============================",
-                     30 - bar, "", done, all, done / std::max(elapsed, 1e-9), stats.live);
-        std::fflush(stderr);
+        const int done = k - first + 1;
+        char extra[64];
+        std::snprintf(extra, sizeof(extra), " %.1f fps  %d lines ", done / std::max(elapsed, 1e-9), stats.live);
+        progress.Update(static_cast<size_t>(done), static_cast<size_t>(end - first), extra);
       }
     }
-    if (show_progress) std::fprintf(stderr, "\n");
     WriteTumTrajectory(output, trajectory);
     if (writer) writer->Close();
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
@@ -155,12 +152,12 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto ms = [](double seconds, int n) { return n > 0 ? 1e3 * seconds / n : 0.0; };
     std::fprintf(stderr,
-                 "track_images: %s: %d frames: %d tracking, %d new reference, %d lost; detection on %d frames\n"
+                 "track_images: %s: %d frames: %d tracking, %d degraded, %d new reference, %d lost; detection on %d frames\n"
                  "  per steady frame:    track %.2f ms, filter %.2f ms (front end %.2f ms)\n"
                  "  per detection frame: detect %.2f ms, describe %.2f ms, match %.2f ms, track %.2f ms, filter %.2f ms "
                  "(front end %.2f ms)\n"
                  "  tracker %.2f ms per frame, image reading %.2f ms per frame; %.1f fps overall\n",
-                 method.c_str(), frames, counts[0], counts[1], counts[2], detection_frames,
+                 method.c_str(), frames, counts[0], counts[3], counts[1], counts[2], detection_frames,
                  ms(steady.track, steady_frames), ms(steady.filter, steady_frames), ms(steady.Total(), steady_frames),
                  ms(detecting.detect, detection_frames), ms(detecting.describe, detection_frames),
                  ms(detecting.match, detection_frames), ms(detecting.track, detection_frames),

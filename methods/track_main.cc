@@ -65,15 +65,7 @@ int main(int argc, char** argv) {
     if (output.empty()) throw CLI::RequiredError("--output");
     // Every output is checked before the (possibly long) tracking: none may be an input or
     // another output, and each must be writable.
-    const std::vector<std::pair<std::string, std::string>> outputs = {
-        {"--output", output}, {"--kitti", kitti_path}, {"--log", log_path}};
-    std::vector<std::string> taken = {input, config_path};
-    for (const auto& [flag, path] : outputs) {
-      if (path.empty()) continue;
-      RefuseOutputThatIsInput(flag, path, taken);
-      CheckWritable(flag, path);
-      taken.push_back(path);
-    }
+    CheckOutputsBeforeWork({{"--output", output}, {"--kitti", kitti_path}, {"--log", log_path}}, {input, config_path});
     // Frame by frame: memory does not grow with the observations of a long sequence.
     StereoLinesReader reader(input);
     tracker->Reset(reader.rig());

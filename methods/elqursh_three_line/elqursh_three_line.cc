@@ -345,11 +345,7 @@ TrackerInfo ElqurshThreeLineInfo() {
   info.name = "elqursh_three_line";
   info.description = "Three-line relative pose with RANSAC, chained frame to frame (Elqursh & Elgammal, CVPR 2011)";
   info.create = Create;
-  info.list_options = [] {
-    std::vector<OptionDoc> docs;
-    ElqurshThreeLineOptionsSchema().List(ElqurshThreeLineOptions(), "", &docs);
-    return docs;
-  };
+  info.list_options = [] { return ElqurshThreeLineOptionsSchema().Docs(); };
   info.minimum_lines = 3;
   info.needs_primitive_configurations = true;
   return info;

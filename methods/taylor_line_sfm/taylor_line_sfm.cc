@@ -76,11 +76,7 @@ TrackerInfo TaylorLineSfmInfo() {
   TrackerInfo info;
   info.name = "taylor_line_sfm";
   info.description = "Line structure from motion over a sliding window, Ceres (Taylor & Kriegman, IEEE PAMI 1995)";
-  info.list_options = [] {
-    std::vector<OptionDoc> docs;
-    TaylorLineSfmOptionsSchema().List(TaylorLineSfmOptions(), "", &docs);
-    return docs;
-  };
+  info.list_options = [] { return TaylorLineSfmOptionsSchema().Docs(); };
   info.create = [](const nlohmann::json& json, const std::string& where) -> std::unique_ptr<PoseTracker> {
     JsonReader reader(json, where);
     TaylorLineSfmOptions options;
