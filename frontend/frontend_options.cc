@@ -49,6 +49,8 @@ const OptionSchema<TrackingOptions>& TrackingOptionsSchema() {
       OptionSchema<T>()
           .Field("window_px", &T::window_px, InRange(5, 101), "Lucas-Kanade window side, px")
           .Field("pyramid_levels", &T::pyramid_levels, InRange(0, 8), "pyramid levels above the image")
+          .Field("max_iterations", &T::max_iterations, InRange(1, 100), "Lucas-Kanade iterations per pyramid level, at most")
+          .Field("epsilon_px", &T::epsilon_px, Positive(), "Lucas-Kanade stops below this update, px")
           .Field("point_spacing_px", &T::point_spacing_px, Positive(), "one tracked point every this many px along a segment")
           .Field("min_points", &T::min_points, InRange(2, 1000), "fewest points per segment")
           .Field("max_points", &T::max_points, InRange(2, 1000), "most points per segment")
@@ -56,6 +58,11 @@ const OptionSchema<TrackingOptions>& TrackingOptionsSchema() {
           .Field("min_inlier_fraction", &T::min_inlier_fraction, InRange(0.0, 1.0), "refit: fewest inliers, fraction of the points")
           .Field("max_rms_px", &T::max_rms_px, Positive(), "refit: largest RMS distance of the inliers, px")
           .Field("min_length_px", &T::min_length_px, InRange(2.0, 1e4), "shortest tracked segment kept, px")
+          .Field("snap_radius_px", &T::snap_radius_px, InRange(0.0, 20.0), "edge snapping: search across the line, px (0 = off)")
+          .Field("snap_spacing_px", &T::snap_spacing_px, InRange(0.5, 100.0), "edge snapping: one search every this many px")
+          .Field("snap_max_places", &T::snap_max_places, InRange(3, 1000), "edge snapping: most searches per segment")
+          .Field("snap_min_fraction", &T::snap_min_fraction, InRange(0.0, 1.0), "edge snapping: fewest searches finding an edge, fraction")
+          .Field("snap_min_gradient", &T::snap_min_gradient, AtLeast(0.0), "edge snapping: weakest edge, grey levels per px")
           .Field("min_stereo_overlap", &T::min_stereo_overlap, InRange(0.0, 1.0), "stereo consistency: overlap in the epipolar beam")
           .Check("max_points", [](const T& t) { return t.max_points >= t.min_points ? "" : "must be >= min_points"; });
   return schema;

@@ -25,7 +25,7 @@ struct DetectionOptions {
   // its less precise segments gave 3.4 % wrong stereo matches (LSD 0.3 %) and 5x the ATE.
   LineDetectorType detector = LineDetectorType::kLsd;
   // Segments shorter than this (after merging) are dropped: too short to track or describe.
-  double min_length_px = 20.0;
+  double min_length_px = 30.0;
   // Collinear fragments are merged when their directions differ by less than merge_angle_deg,
   // each one's endpoints lie within merge_distance_px of the other's line, and the gap between
   // them along the line is at most merge_gap_px (overlapping fragments have a negative gap).
@@ -63,13 +63,18 @@ struct MatchingOptions {
 struct TrackingOptions {
   // Pyramidal Lucas-Kanade (cv::calcOpticalFlowPyrLK): window side and pyramid levels above
   // the image (0 = the image only).
-  int window_px = 21;
+  int window_px = 9;
   int pyramid_levels = 3;
+  // Lucas-Kanade iterations per pyramid level stop after max_iterations or when the update is
+  // below epsilon_px. A point on an edge has a poorly determined component along the edge (the
+  // aperture problem), which rarely settles below epsilon_px: it runs to max_iterations.
+  int max_iterations = 5;
+  double epsilon_px = 0.01;
   // Points sampled along each segment: one every point_spacing_px, at least min_points (else
   // the segment is too short to refit) and at most max_points.
   double point_spacing_px = 6.0;
   int min_points = 6;
-  int max_points = 24;
+  int max_points = 6;
   // Robust refit (optim/ransac.h): a point is an inlier within inlier_px of the line. The line
   // is lost when fewer than min_inlier_fraction of its points are inliers or the RMS distance of
   // the inliers exceeds max_rms_px.
@@ -77,7 +82,19 @@ struct TrackingOptions {
   double min_inlier_fraction = 0.6;
   double max_rms_px = 0.5;
   // A tracked segment shorter than this (e.g. after clipping at the border) is lost.
-  double min_length_px = 15.0;
+  double min_length_px = 25.0;
+  // Edge snapping after the refit (line_tracking.h): every snap_spacing_px along the refitted
+  // segment (at most snap_max_places places), the strongest image gradient across it of the
+  // segment's polarity within snap_radius_px is located to sub-pixel precision, and the line is
+  // refitted to those edge points; the segment is lost when edges are found at fewer than
+  // snap_min_fraction of the places. This anchors the line to the current image instead of to
+  // its previous position (no drift). 0 = off.
+  double snap_radius_px = 2.0;
+  double snap_spacing_px = 1.5;
+  int snap_max_places = 24;  // on long segments the places are spread out
+  double snap_min_fraction = 0.5;
+  // Smallest gradient across the line that counts as an edge, grey levels per pixel.
+  double snap_min_gradient = 1.0;
   // A tracked pair is dropped when its segments no longer overlap in each other's epipolar beam
   // by this fraction (stereo consistency), or leave the disparity range.
   double min_stereo_overlap = 0.3;

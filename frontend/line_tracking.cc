@@ -54,7 +54,105 @@ struct LineEstimator : FixedSampleSize<2> {
   }
 };
 
+// The derivative (du, dv) at a sub-pixel position of a CV_16SC2 image, bilinear, clamped to
+// the image.
+inline Eigen::Vector2f SampleDerivative(const cv::Mat& derivatives, float u, float v) {
+  const int w = derivatives.cols, h = derivatives.rows;
+  u = std::clamp(u, 0.0f, static_cast<float>(w - 1));
+  v = std::clamp(v, 0.0f, static_cast<float>(h - 1));
+  const int u0 = std::min(static_cast<int>(u), w - 2), v0 = std::min(static_cast<int>(v), h - 2);
+  const float fu = u - u0, fv = v - v0;
+  const short* r0 = derivatives.ptr<short>(v0) + 2 * u0;
+  const short* r1 = derivatives.ptr<short>(v0 + 1) + 2 * u0;
+  const float w00 = (1 - fu) * (1 - fv), w01 = fu * (1 - fv), w10 = (1 - fu) * fv, w11 = fu * fv;
+  return {w00 * r0[0] + w01 * r0[2] + w10 * r1[0] + w11 * r1[2], w00 * r0[1] + w01 * r0[3] + w10 * r1[1] + w11 * r1[3]};
+}
+
+// OpenCV's Scharr derivatives in the flow pyramid are 32 x the grey-level gradient.
+constexpr float kScharrScale = 32.0f;
+constexpr int kMaxSnapRadius = 20;  // TrackingOptions' range
+constexpr double kSnapEndMarginPx = 3.0;
+
 }  // namespace
+
+bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment,
+                        SnapWorkspace* workspace) {
+  const Eigen::Vector2d a = segment->head<2>(), b = segment->tail<2>();
+  const double length = (b - a).norm();
+  if (length < 1e-6 || derivatives.type() != CV_16SC2) return false;
+  const Eigen::Vector2d d = (b - a) / length, n(-d.y(), d.x());
+  const int radius = std::min(kMaxSnapRadius, static_cast<int>(std::ceil(options.snap_radius_px)));
+  // The places keep off the endpoints, where the edge that meets this one at a corner is within
+  // reach of the derivative kernel and the image's blur.
+  const double margin = std::min(kSnapEndMarginPx, 0.25 * length), span = length - 2.0 * margin;
+  const int places = std::clamp(static_cast<int>(std::lround(span / options.snap_spacing_px)), 1, options.snap_max_places);
+  const int width = 2 * radius + 3;  // offsets -radius-1 .. radius+1
+  // profiles[m * width + o + radius + 1] = g_m(o), grey levels per px.
+  std::vector<float>& profiles = workspace->profiles;
+  std::vector<Eigen::Vector2d>* edge_points = &workspace->edge_points;
+  profiles.resize(static_cast<size_t>(places) * width);
+  // g = grad . n / 32 (kScharrScale): the normal pre-scaled.
+  const float nx = static_cast<float>(n.x()), ny = static_cast<float>(n.y());
+  const float gx = nx / kScharrScale, gy = ny / kScharrScale;
+  const float max_u = static_cast<float>(derivatives.cols - 2), max_v = static_cast<float>(derivatives.rows - 2);
+  double polarity = 0.0;
+  for (int m = 0; m < places; ++m) {
+    const Eigen::Vector2d x = a + (margin + (m + 0.5) * span / places) * d;
+    const float u_first = static_cast<float>(x.x()) - (radius + 1) * nx, v_first = static_cast<float>(x.y()) - (radius + 1) * ny;
+    const float u_last = u_first + (width - 1) * nx, v_last = v_first + (width - 1) * ny;
+    float* g = &profiles[static_cast<size_t>(m) * width];
+    if (std::min(u_first, u_last) >= 0.0f && std::min(v_first, v_last) >= 0.0f && std::max(u_first, u_last) < max_u &&
+        std::max(v_first, v_last) < max_v) {
+      // Inside: bilinear without clamping, the common case.
+      for (int k = 0; k < width; ++k) {
+        const float u = u_first + k * nx, v = v_first + k * ny;
+        const int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
+        const float fu = u - u0, fv = v - v0;
+        const short* r0 = derivatives.ptr<short>(v0) + 2 * u0;
+        const short* r1 = r0 + derivatives.step1();
+        const float w00 = (1 - fu) * (1 - fv), w01 = fu * (1 - fv), w10 = (1 - fu) * fv, w11 = fu * fv;
+        g[k] = gx * (w00 * r0[0] + w01 * r0[2] + w10 * r1[0] + w11 * r1[2]) +
+               gy * (w00 * r0[1] + w01 * r0[3] + w10 * r1[1] + w11 * r1[3]);
+      }
+    } else {
+      for (int k = 0; k < width; ++k) {
+        const Eigen::Vector2f grad = SampleDerivative(derivatives, u_first + k * nx, v_first + k * ny);
+        g[k] = gx * grad.x() + gy * grad.y();
+      }
+    }
+    polarity += g[radius] + g[radius + 1] + g[radius + 2];  // |o| <= 1
+  }
+  const float sign = polarity >= 0.0 ? 1.0f : -1.0f;
+  edge_points->clear();
+  for (int m = 0; m < places; ++m) {
+    const float* g = &profiles[static_cast<size_t>(m) * width] + radius + 1;  // g[o], |o| <= radius + 1
+    int best = 0;
+    for (int o = -radius; o <= radius; ++o) {
+      if (sign * g[o] > sign * g[best]) best = o;
+    }
+    if (best == -radius || best == radius || sign * g[best] < options.snap_min_gradient) continue;
+    const float gm = sign * g[best - 1], g0 = sign * g[best], gp = sign * g[best + 1];
+    const float curvature = gm - 2.0f * g0 + gp;
+    const double delta = curvature < 0.0f ? std::clamp(0.5f * (gm - gp) / curvature, -0.5f, 0.5f) : 0.0f;
+    edge_points->push_back(a + (margin + (m + 0.5) * span / places) * d + (best + delta) * n);
+  }
+  const int needed = std::max(3, static_cast<int>(std::ceil(options.snap_min_fraction * places)));
+  if (static_cast<int>(edge_points->size()) < needed) return false;
+  Eigen::Vector3d line;
+  if (!FitLine(*edge_points, nullptr, static_cast<int>(edge_points->size()), &line)) return false;
+  for (int pass = 0; pass < 2; ++pass) {
+    int kept = 0;
+    for (const Eigen::Vector2d& p : *edge_points) {
+      if (std::abs(line.head<2>().dot(p) + line.z()) <= options.inlier_px) (*edge_points)[kept++] = p;
+    }
+    edge_points->resize(kept);
+    if (kept < needed || !FitLine(*edge_points, nullptr, kept, &line)) return false;
+  }
+  const Eigen::Vector2d normal = line.head<2>();
+  const Eigen::Vector2d p = a - (normal.dot(a) + line.z()) * normal, q = b - (normal.dot(b) + line.z()) * normal;
+  *segment = Segment2d(p.x(), p.y(), q.x(), q.y());
+  return true;
+}
 
 LineFlowTracker::LineFlowTracker(const TrackingOptions& options, std::uint64_t seed)
     : options_(options), ransac_(seed) {}
@@ -67,6 +165,7 @@ void LineFlowTracker::BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid) c
 void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& next,
                            const std::vector<Segment2d>& segments) {
   segments_ = segments;
+  derivatives_ = next.size() > 1 ? next[1] : cv::Mat();
   first_point_.assign(1, 0);
   points_.clear();
   for (const Segment2d& s : segments) {
@@ -82,7 +181,8 @@ void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& nex
   tracked_points_.clear();
   status_.clear();
   if (points_.empty()) return;
-  const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, options_.max_iterations,
+                                  options_.epsilon_px);
   cv::calcOpticalFlowPyrLK(previous, next, points_, tracked_points_, status_, error_,
                            cv::Size(options_.window_px, options_.window_px), options_.pyramid_levels, criteria);
 }
@@ -154,6 +254,9 @@ void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* track
     }
     LineRefit fit = RefitTrackedLine(options_, old, k, data_, positions_, &ransac_, &result_);
     if (!fit.ok) continue;
+    if (options_.snap_radius_px > 0.0 && !SnapSegmentToEdges(options_, derivatives_, &fit.segment, &snap_)) {
+      continue;
+    }
     if (!ClipSegmentToImage(width, height, &fit.segment)) continue;
     if ((fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) continue;
     (*tracked)[s] = fit.segment;

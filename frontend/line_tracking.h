@@ -13,7 +13,20 @@
 //          orientation and is clipped to the image. It is lost when fewer than
 //          max(min_inlier_fraction K, 3) points are inliers, the inliers' RMS distance exceeds
 //          max_rms_px, alpha leaves [0.5, 2] or the clipped segment is shorter than
-//          min_length_px.
+//          min_length_px;
+//   Snap:  (when options.snap_radius_px > 0) the refitted line is moved onto the image's edge:
+//          at M places x_m along it, one every snap_spacing_px (at most snap_max_places, 3 px
+//          clear of the endpoints), the gradient across the line
+//          g_m(o) = grad I(x_m + o n) . n is searched for its strongest value of the line's
+//          polarity (the sign of the mean g at |o| <= 1) over |o| <= snap_radius_px, on the
+//          Scharr derivatives the pyramid holds; the maximum, located to sub-pixel by a
+//          parabola through its neighbours, is an edge point when it is at least
+//          snap_min_gradient and not on the search's border. The line is refitted by total
+//          least squares to the edge points (twice, dropping points over inlier_px from it),
+//          and the refitted endpoints are projected onto it. Lost when fewer than
+//          max(3, snap_min_fraction M) edge points remain. Frame-to-frame flow alone integrates
+//          its errors (a track drifts off its edge by ~2 px over 20-100 frames, measured in
+//          docs/frontend.md); the snap measures the line in the current image each frame.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -40,6 +53,16 @@ LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old,
                            const std::vector<Eigen::Vector2d>& points, const std::vector<double>& positions,
                            Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace);
 
+// The snap above, in place: false when the segment is lost. `derivatives` is the level-0
+// derivative image of an ImagePyramid (CV_16SC2, OpenCV's Scharr, 32 x the gradient);
+// `workspace` is reused from call to call.
+struct SnapWorkspace {
+  std::vector<float> profiles;
+  std::vector<Eigen::Vector2d> edge_points;
+};
+bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment,
+                        SnapWorkspace* workspace);
+
 class LineFlowTracker {
  public:
   explicit LineFlowTracker(const TrackingOptions& options, std::uint64_t seed = 1);
@@ -48,8 +71,8 @@ class LineFlowTracker {
   void BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid) const;
   // Stage 1: tracks the sample points of `segments` from `previous` into `next`.
   void Flow(const ImagePyramid& previous, const ImagePyramid& next, const std::vector<Segment2d>& segments);
-  // Stage 2: the refitted segments (ok[i] = 0 when segment i is lost), for the segments of the
-  // last Flow() call, in an image of the given size.
+  // Stage 2: the refitted (and snapped) segments (ok[i] = 0 when segment i is lost), for the
+  // segments of the last Flow() call, in an image of the given size.
   void Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok);
 
   // The mean RMS refit residual of the segments kept by the last Refit, px (diagnostics).
@@ -60,12 +83,14 @@ class LineFlowTracker {
   Ransac<Eigen::Vector3d> ransac_;
   RansacResult<Eigen::Vector3d> result_;
   std::vector<Segment2d> segments_;
+  cv::Mat derivatives_;  // of the last Flow()'s next image
   std::vector<int> first_point_;  // per segment, index of its first point; size n + 1
   std::vector<cv::Point2f> points_, tracked_points_;
   std::vector<uchar> status_;
   std::vector<float> error_;
   std::vector<Eigen::Vector2d> data_;
   std::vector<double> positions_;
+  SnapWorkspace snap_;
   double last_mean_rms_ = 0.0;
 };
 

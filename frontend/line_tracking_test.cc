@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
+
 #include "frontend/rendered_pair.h"
 
 namespace slt {
@@ -72,6 +75,49 @@ TEST(RefitTrackedLine, LostWhenTooFewPointsAgree) {
   points.push_back(b);
   positions.push_back((b - a).norm());
   EXPECT_TRUE(RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace).ok);
+}
+
+// A blurred step edge along the line through `p` with direction `d` (brighter on the left
+// normal n = (-d_v, d_u)), 320 x 240.
+cv::Mat StepEdgeImage(const Eigen::Vector2d& p, const Eigen::Vector2d& d) {
+  cv::Mat image(240, 320, CV_8UC1);
+  const Eigen::Vector2d n(-d.y(), d.x());
+  for (int v = 0; v < image.rows; ++v) {
+    for (int u = 0; u < image.cols; ++u) {
+      const double s = n.dot(Eigen::Vector2d(u, v) - p);  // signed distance, px
+      image.at<uchar>(v, u) = cv::saturate_cast<uchar>(100.0 + 60.0 * std::tanh(s / 0.8));
+    }
+  }
+  return image;
+}
+
+TEST(SnapSegmentToEdges, MovesASegmentOntoTheEdgeAndLosesItWithoutOne) {
+  const Eigen::Vector2d p(150.3, 117.6), d = Eigen::Vector2d(1.0, 0.35).normalized(), n(-d.y(), d.x());
+  const cv::Mat image = StepEdgeImage(p, d);
+  TrackingOptions options;
+  options.snap_radius_px = 2.0;
+  LineFlowTracker tracker(options);
+  ImagePyramid pyramid;
+  tracker.BuildPyramid(image, &pyramid);
+  ASSERT_GE(pyramid.size(), 2u);
+  // 1.3 px off the edge and turned by 1.5 deg: both endpoints within the search radius.
+  const Eigen::Vector2d e = Eigen::Rotation2Dd(1.5 * M_PI / 180.0) * d;
+  const Eigen::Vector2d a = p - 40.0 * e + 1.3 * n, b = p + 40.0 * e + 1.3 * n;
+  Segment2d segment(a.x(), a.y(), b.x(), b.y());
+  SnapWorkspace workspace;
+  ASSERT_TRUE(SnapSegmentToEdges(options, pyramid[1], &segment, &workspace));
+  EXPECT_LT(DistanceToLine(segment, p, d), 0.1);  // measured 0.054 (the parabola's sub-pixel bias)
+  // The endpoints are the old ones projected onto the edge: the segment keeps its extent.
+  EXPECT_NEAR((segment.tail<2>() - segment.head<2>()).norm(), 80.0, 0.2);
+  EXPECT_GT((segment.tail<2>() - segment.head<2>()).dot(d), 0.0);
+  // 4 px off: the edge is outside the search, the segment is lost.
+  const Eigen::Vector2d far = 4.0 * n;
+  Segment2d away(a.x() + far.x(), a.y() + far.y(), b.x() + far.x(), b.y() + far.y());
+  EXPECT_FALSE(SnapSegmentToEdges(options, pyramid[1], &away, &workspace));
+  // A flat image has no edge anywhere.
+  tracker.BuildPyramid(cv::Mat(240, 320, CV_8UC1, cv::Scalar(100)), &pyramid);
+  Segment2d flat(a.x(), a.y(), b.x(), b.y());
+  EXPECT_FALSE(SnapSegmentToEdges(options, pyramid[1], &flat, &workspace));
 }
 
 TEST(LineFlowTracker, FollowsRenderedRoomEdgesOntoTheirTrueLines) {
