@@ -44,10 +44,29 @@ bool MsldExtractor::Compute(const Segment2d& segment, MsldDescriptor* descriptor
   const int w = smoothed_.cols, h = smoothed_.rows;
   const float* image = smoothed_.ptr<float>(0);
   const size_t stride = smoothed_.step1();
+  // The patch's corners inside [0, w - 2] x [0, h - 2]: no sample needs clamping (the common
+  // case; the loop below then has no branches).
+  const auto inside = [&](float u, float v) { return u >= 0.0f && v >= 0.0f && u < w - 2 && v < h - 2; };
+  const float u00 = static_cast<float>(a.x()) - 3 * dx - 23 * nx, v00 = static_cast<float>(a.y()) - 3 * dy - 23 * ny;
+  const float along = static_cast<float>(rows - 1), across = static_cast<float>(kCols - 1);
+  const bool all_inside = inside(u00, v00) && inside(u00 + along * dx, v00 + along * dy) &&
+                          inside(u00 + across * nx, v00 + across * ny) &&
+                          inside(u00 + along * dx + across * nx, v00 + along * dy + across * ny);
   for (int r = 0; r < rows; ++r) {
     const float base_u = static_cast<float>(a.x()) + (r - 3) * dx - 23 * nx;
     const float base_v = static_cast<float>(a.y()) + (r - 3) * dy - 23 * ny;
     float* out = &patch_[static_cast<size_t>(r) * kCols];
+    if (all_inside) {
+      for (int k = 0; k < kCols; ++k) {
+        const float u = base_u + k * nx, v = base_v + k * ny;
+        const int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
+        const float fu = u - u0, fv = v - v0;
+        const float* p0 = image + v0 * stride + u0;
+        const float* p1 = p0 + stride;
+        out[k] = (1 - fv) * ((1 - fu) * p0[0] + fu * p0[1]) + fv * ((1 - fu) * p1[0] + fu * p1[1]);
+      }
+      continue;
+    }
     for (int k = 0; k < kCols; ++k) {
       float u = base_u + k * nx, v = base_v + k * ny;
       u = u < 0.0f ? 0.0f : (u > w - 1 ? static_cast<float>(w - 1) : u);
