@@ -101,6 +101,14 @@ nlohmann::json RenderedCorridorConfig(int frames) {
           {"observation", kVisibleTruth}};
 }
 
+nlohmann::json RenderedPaperConfig(int frames) {
+  return {{"frames", frames},
+          {"scene", {{"type", "paper"}}},
+          {"motion", {{"type", "paper"}, {"sinusoid", {{"max_rotation_deg", 1.0}, {"max_translation_m", 0.01}}}}},
+          {"noise", {{"endpoint_px", 0.0}}},
+          {"observation", kVisibleTruth}};
+}
+
 PairVerdict JudgeStereoPair(const ProjectedGroundTruth& left_truth, const ProjectedGroundTruth& right_truth,
                             const Segment2d& left, const Segment2d& right, std::vector<int>* common) {
   std::vector<int> under_left, under_right;

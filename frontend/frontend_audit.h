@@ -63,9 +63,12 @@ ProjectedGroundTruth ProjectedGroundTruthAt(const SimulatedSequence& sequence, i
 // frontend_benchmark, tests): the visible ground truth (clipped, occlusion on), noise-free.
 //   room:     the room loop (motion.loop defaults), at 752 x 480 with EuRoC's rectified focal
 //             length and 0.11 m baseline when `euroc_size`, else the default 640 x 480 rig;
-//   corridor: the corridor walked forward 1 cm per frame, 640 x 480.
+//   corridor: the corridor walked forward 1 cm per frame, 640 x 480;
+//   paper:    the paper's scene and motion (Sec. 5.1: random segments, per-frame motion up to
+//             1 cm and 1 deg), 640 x 480, rendered (frontend/configs/paper_640x480.json).
 nlohmann::json RenderedRoomConfig(int frames, bool euroc_size);
 nlohmann::json RenderedCorridorConfig(int frames);
+nlohmann::json RenderedPaperConfig(int frames);
 
 // The verdict on a stereo pair of segments (see above); `common` receives the ground-truth
 // lines under both, ascending.

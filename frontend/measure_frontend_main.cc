@@ -3,9 +3,11 @@
 //
 //   measure_frontend [--frames N] [--step K] [--method NAME] [--out DIR]
 //
-// Two scenes are rendered in memory (render/, default image settings: noise, defocus blur,
+// Three scenes are rendered in memory (render/, default image settings: noise, defocus blur,
 // vignetting, exposure changes): the room loop at 752 x 480 (EuRoC's image size and focal
-// length) and the corridor walked forward at 640 x 480, N frames each.
+// length), the corridor walked forward at 640 x 480 and the paper's scene and motion (Sec. 5.1)
+// at 640 x 480, N frames each. On the paper scene the "noisy" run below is the synthetic paper
+// protocol at the front end's noise level.
 //
 // 1. detectors.md: every detector of frontend/line_detection.h, with the front end's merging,
 //    length and contrast filters, on frames 0, K, 2K, ... of both (both cameras): recall = the
@@ -46,7 +48,8 @@ struct MeasuredScene {
 
 std::vector<MeasuredScene> Scenes(int frames) {
   return {{"room 752x480 (loop)", RenderedRoomConfig(frames, true)},
-          {"corridor 640x480 (forward)", RenderedCorridorConfig(frames)}};
+          {"corridor 640x480 (forward)", RenderedCorridorConfig(frames)},
+          {"paper scene 640x480 (paper motion)", RenderedPaperConfig(frames)}};
 }
 
 std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
