@@ -18,8 +18,9 @@
 //          at M places x_m along it, one every snap_spacing_px (at most snap_max_places, 3 px
 //          clear of the endpoints), the gradient across the line
 //          g_m(o) = grad I(x_m + o n) . n is searched for its strongest value of the line's
-//          polarity (the sign of the mean g at |o| <= 1) over |o| <= snap_radius_px, on the
-//          Scharr derivatives the pyramid holds; the maximum, located to sub-pixel by a
+//          polarity (the sign of the mean g at |o| <= 1) over whole-pixel offsets
+//          |o| <= ceil(snap_radius_px), on the Scharr derivatives the pyramid holds (so Flow()
+//          takes pyramids made by BuildPyramid); the maximum, located to sub-pixel by a
 //          parabola through its neighbours, is an edge point when it is at least
 //          snap_min_gradient and not on the search's border. The line is refitted by total
 //          least squares to the edge points (twice, dropping points over inlier_px from it),
