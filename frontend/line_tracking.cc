@@ -149,7 +149,32 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
     if (kept < needed || !FitLine(*edge_points, nullptr, kept, &line)) return false;
   }
   const Eigen::Vector2d normal = line.head<2>();
-  const Eigen::Vector2d p = a - (normal.dot(a) + line.z()) * normal, q = b - (normal.dot(b) + line.z()) * normal;
+  Eigen::Vector2d p = a - (normal.dot(a) + line.z()) * normal, q = b - (normal.dot(b) + line.z()) * normal;
+  // Trimmed to the extent of the edge on the fitted line (plus the margin and half a place):
+  // an end the flow carried past the edge's end does not grow the segment. A place is on the
+  // edge when the gradient at its projection onto the line is at least snap_min_gradient and
+  // not below that 1 px to either side (a place whose search missed the edge because the
+  // refitted line was off by more than the radius there counts, once the fit is right).
+  const Eigen::Vector2d e = (q - p).normalized(), en(-e.y(), e.x());
+  const auto on_edge = [&](int m) {
+    const Eigen::Vector2d x = p + (margin + (m + 0.5) * span / places) * e;
+    float g[3];
+    for (int o = -1; o <= 1; ++o) {
+      const Eigen::Vector2f grad = SampleDerivative(derivatives, static_cast<float>(x.x() + o * en.x()),
+                                                    static_cast<float>(x.y() + o * en.y()));
+      g[o + 1] = sign * (gx * grad.x() + gy * grad.y());
+    }
+    return g[1] >= options.snap_min_gradient && g[1] >= g[0] && g[1] >= g[2];
+  };
+  int first = 0, last = places - 1;
+  while (first <= last && !on_edge(first)) ++first;
+  while (last > first && !on_edge(last)) --last;
+  if (first > last) return false;
+  const double slack = margin + 0.5 * span / places, extent = (q - p).norm();
+  const double t0 = std::max(0.0, margin + (first + 0.5) * span / places - slack);
+  const double t1 = std::min(extent, margin + (last + 0.5) * span / places + slack);
+  q = p + t1 * e;
+  p = p + t0 * e;
   *segment = Segment2d(p.x(), p.y(), q.x(), q.y());
   return true;
 }
