@@ -56,7 +56,7 @@ void BM_DetectOneImage(benchmark::State& state) {
   const LineDetectorType type = static_cast<LineDetectorType>(state.range(0));
   DetectionOptions options;
   options.detector = type;
-  const std::unique_ptr<LineDetector> detector = MakeLineDetector(type);
+  const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
   const cv::Mat& image = RenderedPairs().images[0][0];
   size_t lines = 0;
   for (auto _ : state) {
@@ -73,7 +73,7 @@ BENCHMARK(BM_DetectOneImage)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 // middle 50 px. Time per line (items per second).
 void BM_MsldPer50PxLine(benchmark::State& state) {
   const cv::Mat& image = RenderedPairs().images[0][0];
-  const std::unique_ptr<LineDetector> detector = MakeLineDetector(LineDetectorType::kLsd);
+  const std::unique_ptr<LineDetector> detector = MakeLineDetector(DetectionOptions());
   std::vector<Segment2d> segments;
   for (const ImageLine& line : DetectLines(*detector, DetectionOptions(), image)) {
     const double length = line.Length();
@@ -109,7 +109,7 @@ void BM_TrackPyramidOneImage(benchmark::State& state) {
 BENCHMARK(BM_TrackPyramidOneImage)->Unit(benchmark::kMillisecond);
 
 std::vector<Segment2d> FirstLeftLines() {
-  const std::unique_ptr<LineDetector> detector = MakeLineDetector(BenchmarkOptions().detection.detector);
+  const std::unique_ptr<LineDetector> detector = MakeLineDetector(BenchmarkOptions().detection);
   std::vector<Segment2d> segments;
   for (const ImageLine& line : DetectLines(*detector, BenchmarkOptions().detection, RenderedPairs().images[0][0])) {
     segments.push_back(line.segment);

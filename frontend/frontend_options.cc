@@ -16,6 +16,7 @@ const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
   static const OptionSchema<D> schema =
       OptionSchema<D>()
           .Field("detector", &D::detector, LineDetectorNames(), "line segment detector")
+          .Field("lsd_quant", &D::lsd_quant, InRange(0.1, 10.0), "LSD: gradient quantisation bound (OpenCV's quant)")
           .Field("min_length_px", &D::min_length_px, InRange(2.0, 1e4), "shortest segment kept, px")
           .Field("merge_angle_deg", &D::merge_angle_deg, InRange(0.0, 45.0), "collinear merge: largest angle, deg")
           .Field("merge_distance_px", &D::merge_distance_px, AtLeast(0.0), "collinear merge: largest endpoint distance to the other line, px")

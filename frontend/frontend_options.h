@@ -24,6 +24,11 @@ struct DetectionOptions {
   // LSD by the measurements of docs/frontend.md: EDLines has its recall and is 4x faster, but
   // its less precise segments gave 3.4 % wrong stereo matches (LSD 0.3 %) and 5x the ATE.
   LineDetectorType detector = LineDetectorType::kLsd;
+  // LSD's bound on the gradient quantisation error (von Gioi et al.; OpenCV's `quant`): pixels
+  // with a gradient magnitude below quant / sin(22.5 deg) are not used. 1 instead of OpenCV's
+  // 2 finds more low-contrast edges (corridor recall 0.81 -> 0.92) but made the end-to-end
+  // CI loop's ATE three times worse (docs/frontend.md): 2 stays.
+  double lsd_quant = 2.0;
   // Segments shorter than this (after merging) are dropped: too short to track or describe.
   double min_length_px = 30.0;
   // Collinear fragments are merged when their directions differ by less than merge_angle_deg,

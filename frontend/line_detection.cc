@@ -19,7 +19,10 @@ Segment2d ToSegment(const cv::Vec4f& v) { return Segment2d(v[0], v[1], v[2], v[3
 
 class LsdDetector : public LineDetector {
  public:
-  LsdDetector() : lsd_(cv::createLineSegmentDetector(cv::LSD_REFINE_STD)) {}
+  // OpenCV's defaults (scale 0.8, sigma_scale 0.6, ang_th 22.5 deg) but the gradient
+  // quantisation bound `quant` (OpenCV's default 2), which sets the smallest gradient
+  // magnitude LSD considers: DetectionOptions::lsd_quant.
+  explicit LsdDetector(double quant) : lsd_(cv::createLineSegmentDetector(cv::LSD_REFINE_STD, 0.8, 0.6, quant)) {}
   void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) override {
     lines_.clear();
     lsd_->detect(grey, lines_);
@@ -135,9 +138,9 @@ class CannyHoughDetector : public LineDetector {
 
 }  // namespace
 
-std::unique_ptr<LineDetector> MakeLineDetector(LineDetectorType type) {
-  switch (type) {
-    case LineDetectorType::kLsd: return std::make_unique<LsdDetector>();
+std::unique_ptr<LineDetector> MakeLineDetector(const DetectionOptions& options) {
+  switch (options.detector) {
+    case LineDetectorType::kLsd: return std::make_unique<LsdDetector>(options.lsd_quant);
     case LineDetectorType::kEdlines: return std::make_unique<EdlinesDetector>();
     case LineDetectorType::kFld: return std::make_unique<FldDetector>();
     case LineDetectorType::kBinaryDescriptor: return std::make_unique<BinaryDescriptorDetector>();

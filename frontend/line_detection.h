@@ -31,7 +31,8 @@ class LineDetector {
   // The detector's raw segments (unoriented, unmerged, any length).
   virtual void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) = 0;
 };
-std::unique_ptr<LineDetector> MakeLineDetector(LineDetectorType type);
+// The detector options.detector names, with its parameters from `options` (LSD's quant).
+std::unique_ptr<LineDetector> MakeLineDetector(const DetectionOptions& options);
 
 // Merges collinear fragments (options.merge_*) in place: the merged segment spans the extreme
 // projections of both onto the longer one's line. Repeats until nothing merges.

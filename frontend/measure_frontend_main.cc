@@ -81,7 +81,7 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step) {
     for (const auto& [type, name] : LineDetectorNames()) {
       DetectionOptions options;
       options.detector = type;
-      const std::unique_ptr<LineDetector> detector = MakeLineDetector(type);
+      const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
       DetectionScore score;
       for (size_t i = 0; i < images.size(); ++i) {
         const auto t0 = Clock::now();

@@ -18,7 +18,7 @@ double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 StereoFrontEnd::StereoFrontEnd(const FrontEndOptions& options, const StereoRig& rig)
     : options_(options),
       rig_(rig),
-      detector_(MakeLineDetector(options.detection.detector)),
+      detector_(MakeLineDetector(options.detection)),
       matcher_(options.matching, rig),
       flow_{LineFlowTracker(options.tracking, 1), LineFlowTracker(options.tracking, 2)} {}
 

@@ -23,7 +23,7 @@ MatchedPair MatchFrame(int frame, const FrontEndOptions& options) {
   MatchedPair out;
   std::vector<MsldDescriptor> descriptors[2];
   cv::Mat images[2];
-  const std::unique_ptr<LineDetector> detector = MakeLineDetector(options.detection.detector);
+  const std::unique_ptr<LineDetector> detector = MakeLineDetector(options.detection);
   MsldExtractor msld;
   for (int c = 0; c < 2; ++c) {
     images[c] = room.Image(frame, c);
