@@ -16,7 +16,31 @@ Eigen::Matrix3d PlaneHomography(const PinholeCamera& camera, const Rigid3d& next
 // Depth along the ray of normalised point x (x, y, 1) to the plane n^T X + d = 0.
 double DepthOnPlane(const Eigen::Vector3d& n, double d, const Eigen::Vector3d& x) { return -d / n.dot(x); }
 
+// The right camera's back-projected plane of `right`, in the left frame: n^T X + d = 0.
+void RightPlaneInLeft(const StereoRig& rig, const Segment2d& right, Eigen::Vector3d* n, double* d) {
+  const Eigen::Vector3d n_right = NormalizedLineFromPixelLine(rig.right, LineFromSegment(right)).normalized();
+  // X_r = E X_l: n = R_E^T n_r, d = n_r . t_E.
+  *n = rig.right_from_left.rotation.transpose() * n_right;
+  *d = n_right.dot(rig.right_from_left.translation);
+}
+
 }  // namespace
+
+bool StereoSegmentEndpoints(const StereoRig& rig, const Segment2d& left, const Segment2d& right,
+                            Eigen::Vector3d* first, Eigen::Vector3d* second) {
+  Eigen::Vector3d n;
+  double d;
+  RightPlaneInLeft(rig, right, &n, &d);
+  for (int e = 0; e < 2; ++e) {
+    const Eigen::Vector2d xy = rig.left.PixelToNormalized(left.segment<2>(2 * e));
+    const Eigen::Vector3d ray(xy.x(), xy.y(), 1.0);
+    const double depth = DepthOnPlane(n, d, ray);
+    const Eigen::Vector3d point = depth * ray;
+    if (!(depth > 0.0) || !std::isfinite(depth) || !((rig.right_from_left * point).z() > 0.0)) return false;
+    (e == 0 ? *first : *second) = point;
+  }
+  return true;
+}
 
 bool PredictStereoLineMotion(const StereoRig& rig, const Rigid3d& next_from_previous, const Segment2d& left,
                              const Segment2d& right, double min_plane_sine, StereoLineMaps* maps, double* depth) {
@@ -24,25 +48,16 @@ bool PredictStereoLineMotion(const StereoRig& rig, const Rigid3d& next_from_prev
   const Rigid3d left_from_right = right_from_left.Inverse();
   // Back-projected planes through each camera's centre, in that camera's frame: [n; 0].
   const Eigen::Vector3d n_left = NormalizedLineFromPixelLine(rig.left, LineFromSegment(left)).normalized();
-  const Eigen::Vector3d n_right = NormalizedLineFromPixelLine(rig.right, LineFromSegment(right)).normalized();
-  // The right plane in the left frame (X_r = E X_l): n = R_E^T n_r, d = n_r . t_E; the left plane
-  // in the right frame likewise with E^-1.
-  const Eigen::Vector3d n_right_in_left = right_from_left.rotation.transpose() * n_right;
-  const double d_right_in_left = n_right.dot(right_from_left.translation);
+  // The right plane in the left frame; the left plane in the right frame likewise with E^-1.
+  Eigen::Vector3d n_right_in_left;
+  double d_right_in_left;
+  RightPlaneInLeft(rig, right, &n_right_in_left, &d_right_in_left);
   const Eigen::Vector3d n_left_in_right = left_from_right.rotation.transpose() * n_left;
   const double d_left_in_right = n_left.dot(left_from_right.translation);
   if (n_left.cross(n_right_in_left).norm() < min_plane_sine) return false;
-  // The line's points at the left endpoints, in front of both cameras.
-  for (int e = 0; e < 2; ++e) {
-    const Eigen::Vector2d xy = rig.left.PixelToNormalized(left.segment<2>(2 * e));
-    const Eigen::Vector3d ray(xy.x(), xy.y(), 1.0);
-    const double depth = DepthOnPlane(n_right_in_left, d_right_in_left, ray);
-    if (!(depth > 0.0) || !((right_from_left * (depth * ray)).z() > 0.0)) return false;
-  }
-  if (depth) {
-    const Eigen::Vector2d xy = rig.left.PixelToNormalized(0.5 * (left.head<2>() + left.tail<2>()));
-    *depth = DepthOnPlane(n_right_in_left, d_right_in_left, Eigen::Vector3d(xy.x(), xy.y(), 1.0));
-  }
+  Eigen::Vector3d first, second;
+  if (!StereoSegmentEndpoints(rig, left, right, &first, &second)) return false;
+  if (depth) *depth = 0.5 * (first.z() + second.z());
   const Rigid3d right_motion = right_from_left * next_from_previous * left_from_right;
   maps->left = PlaneHomography(rig.left, next_from_previous, n_right_in_left, d_right_in_left);
   maps->right = PlaneHomography(rig.right, right_motion, n_left_in_right, d_left_in_right);

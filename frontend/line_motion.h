@@ -29,11 +29,17 @@ struct StereoLineMaps {
   Eigen::Matrix3d right = Eigen::Matrix3d::Identity();
 };
 
+// The 3-D points of the pair's line at the left segment's endpoints (the left rays through them
+// meet the right camera's plane pi'), in the left camera's frame. False when a ray misses the
+// plane (a line near the epipolar plane) or a point is not in front of both cameras.
+bool StereoSegmentEndpoints(const StereoRig& rig, const Segment2d& left, const Segment2d& right,
+                            Eigen::Vector3d* first, Eigen::Vector3d* second);
+
 // The maps of the pair (left, right) (pixel segments of the rig's images) under the left
 // camera's motion `next_from_previous`. False (maps unspecified) when the two back-projected
 // planes meet at less than `min_plane_sine` (sine of the angle) or the line's points at the
 // left segment's endpoints are not in front of both cameras.
-// `depth`, when given, receives the depth of the line's point at the left segment's midpoint.
+// `depth`, when given, receives the mean depth of the line's points at the left endpoints.
 bool PredictStereoLineMotion(const StereoRig& rig, const Rigid3d& next_from_previous, const Segment2d& left,
                              const Segment2d& right, double min_plane_sine, StereoLineMaps* maps,
                              double* depth = nullptr);
