@@ -39,7 +39,9 @@ TEST(ImageTracker, KittiPredictionReachesTheFrontEndAndSeedsMostLines) {
     if (k < 2) continue;  // no update yet before frame 1, so no prediction for it
     ASSERT_TRUE(motion.has_value()) << "frame " << k;
     const Rigid3d true_motion = truth[k].world_from_cam.Inverse() * truth[k - 1].world_from_cam;
-    if (k >= 4) EXPECT_LT((motion->translation - true_motion.translation).norm(), 0.1) << "frame " << k;
+    if (k >= 4) {
+      EXPECT_LT((motion->translation - true_motion.translation).norm(), 0.1) << "frame " << k;
+    }
     predicted += front_end.last_stats().predicted;
     tracked += front_end.last_stats().tracked;
   }
