@@ -74,7 +74,7 @@ std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::ve
 // Their header, then `columns`.
 std::vector<std::string> Header(const ExperimentConfig& config, std::initializer_list<const char*> columns) {
   std::vector<std::string> header = {"method", "point"};
-  for (const SweepAxis& a : config.sweep) header.push_back(a.parameter);
+  for (const std::string& c : SweepColumns(config)) header.push_back(c);
   header.insert(header.end(), columns.begin(), columns.end());
   return header;
 }
@@ -428,15 +428,6 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
   return csv;
 }
 
-std::string PointText(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t point) {
-  if (config.sweep.empty()) return "(no sweep)";
-  std::string s;
-  for (size_t a = 0; a < config.sweep.size(); ++a) {
-    s += (a ? ", " : "") + config.sweep[a].parameter + " = " + FormatValue(points[point].values[a]);
-  }
-  return s;
-}
-
 std::string OrderingText(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   std::map<size_t, std::vector<const SummaryRow*>> by_point;
@@ -446,7 +437,7 @@ std::string OrderingText(const ExperimentConfig& config, const std::vector<Summa
     std::stable_sort(group.begin(), group.end(), [](const SummaryRow* a, const SummaryRow* b) {
       return a->metrics[kRotErrDeg].mean < b->metrics[kRotErrDeg].mean;
     });
-    text += "- " + PointText(config, points, point) + ":";
+    text += "- " + PointText(config, points[point]) + ":";
     for (size_t i = 0; i < group.size(); ++i) {
       text += std::string(i ? " <" : "") + " " + config.methods.at(group[i]->method).Id() + " (" +
               Sig(group[i]->metrics[kRotErrDeg].mean) + " deg)";

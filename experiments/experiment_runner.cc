@@ -67,9 +67,7 @@ Shard ParseShard(const std::string& text) {
 
 std::string DescribeJob(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
   std::string s = "method '" + config.methods[job.method].Id() + "'";
-  for (size_t a = 0; a < config.sweep.size(); ++a) {
-    s += ", " + config.sweep[a].parameter + " = " + FormatValue(points[job.point].values[a]);
-  }
+  if (!config.sweep.empty()) s += ", " + PointText(config, points[job.point]);
   s += ", trial " + std::to_string(job.trial) + " (simulation seed " +
        std::to_string(TrialSeed(config.seed, static_cast<std::uint64_t>(job.trial))) + ")";
   return s;

@@ -97,7 +97,7 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
     std::vector<std::string> values;
     for (const nlohmann::json& v : points.at(row.point).values) values.push_back(FormatValue(v));
     const auto it = by_key.find({id, values});
-    const std::string at = "'" + id + "' at " + PointText(config, points, row.point);
+    const std::string at = "'" + id + "' at " + PointText(config, points.at(row.point));
     if (it == by_key.end()) {
       report.failures.push_back(at + ": no reference row (the sweep changed? regenerate with scripts/update_references.sh)");
       continue;
@@ -147,7 +147,7 @@ RegressionReport CheckOrderings(const ExperimentConfig& config, const std::vecto
         selected = selected && (it == pair.at.end() || *it == points[p].values[a]);
       }
       if (!selected) continue;
-      const std::string at = PointText(config, points, p);
+      const std::string at = PointText(config, points[p]);
       const SummaryRow* better = row_of(pair.better, p);
       const SummaryRow* worse = row_of(pair.worse, p);
       if (better == nullptr || worse == nullptr) {
