@@ -69,9 +69,7 @@ MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const s
 
 std::vector<MethodSpec> AllMethods() {
   std::vector<MethodSpec> methods;
-  for (const TrackerInfo& info : RegisteredTrackers()) {
-    if (!info.plumbing_only) methods.push_back({info.name, info.name});
-  }
+  for (const std::string& name : RegisteredTrackerNames(false)) methods.push_back({name, name});
   return methods;
 }
 

@@ -51,11 +51,8 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
   }
   std::set<std::string> current_ids;
   for (const MethodSpec& m : config.methods) current_ids.insert(m.Id());
-  const std::set<std::string> registered = [] {
-    std::set<std::string> names;
-    for (const TrackerInfo& info : RegisteredTrackers()) names.insert(info.name);
-    return names;
-  }();
+  const std::vector<std::string> registered_names = RegisteredTrackerNames();
+  const std::set<std::string> registered(registered_names.begin(), registered_names.end());
   for (const auto& [id, name] : reference_methods) {
     if (!registered.count(name)) {
       report.failures.push_back("reference method '" + id + "' (tracker '" + name +
