@@ -221,7 +221,7 @@ TEST(Runner, FindsConfigsByName) {
     FindConfigFile("no_such_experiment");
     FAIL() << "found a config that does not exist";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("; available: ablation, ablation_robust, ci/error_vs_frame_ci, "),
+    EXPECT_NE(std::string(e.what()).find("; available: ablation, ablation_robust, ci/corridor_ci, ci/error_vs_frame_ci, "),
               std::string::npos) << e.what();
   }
   const std::vector<std::string> configs = AvailableConfigs();
