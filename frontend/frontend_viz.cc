@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "frontend/line_detection.h"
 #include "frontend/line_motion.h"
@@ -50,9 +51,9 @@ cv::Mat SideBySide(const cv::Mat& left, const cv::Mat& right) {
 }  // namespace
 
 FrontEndPictures::FrontEndPictures(const std::string& dir, const StereoRig& rig, int frames)
-    : dir_(dir), partial_(dir + ".partial"), rig_(rig), frames_(frames) {
+    : dir_(dir), partial_(StagingDir(dir)), rig_(rig), frames_(frames) {
   fs::remove_all(partial_);
-  fs::create_directories(partial_);
+  CreateDirectories(partial_);
 }
 
 void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right, const StereoFrontEnd& front_end,
@@ -130,8 +131,7 @@ void FrontEndPictures::Finish() {
   WriteTextFileAtomically(partial_ + "/reprojection_error.csv", csv);
   WriteCurvePng(partial_ + "/reprojection_error.png", x, y,
                 "Re-projection error of the first pair's lines (Fig. 9)", "frame", "mean angle, deg");
-  fs::remove_all(dir_);
-  fs::rename(partial_, dir_);
+  ReplaceDirectory(partial_, dir_);
 }
 
 void WriteCurvePng(const std::string& path, const std::vector<double>& x, const std::vector<double>& y,

@@ -9,7 +9,8 @@
 //   reprojection_error.png/.csv the mean angle between tracked and re-projected lines against
 //                               frame, both images (Fig. 9).
 // Lines within 5 deg of the epipolar direction are not triangulated (their stereo pair does
-// not define them). Everything is written into DIR.partial and renamed to DIR by Finish().
+// not define them). Everything is written into StagingDir(DIR) and replaces DIR in Finish()
+// (ReplaceDirectory, common/file_io.h).
 #pragma once
 
 #include <Eigen/Core>
