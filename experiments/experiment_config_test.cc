@@ -281,7 +281,9 @@ TEST(ExperimentConfig, EveryConfigLoadsAndEveryCommittedResolvedConfigRoundTrips
       // Plot fields added since a result was made are written with their defaults; the rest is
       // the same, and the rewrite reads back to itself.
       for (const auto& [key, value] : written.items()) {
-        if (key != "plots") EXPECT_EQ(rewritten[key], value) << path << " " << key;
+        if (key != "plots") {
+          EXPECT_EQ(rewritten[key], value) << path << " " << key;
+        }
       }
       EXPECT_EQ(rewritten.size(), written.size()) << path;
       EXPECT_EQ(ExperimentConfigToJson(ExperimentConfigFromJson(rewritten, path)), rewritten) << path;
