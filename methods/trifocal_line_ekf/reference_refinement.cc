@@ -1,0 +1,200 @@
+#include "methods/trifocal_line_ekf/reference_refinement.h"
+
+#include <ceres/problem.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+namespace slt {
+
+const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema() {
+  using O = ReferenceRefinementOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>()
+          .Field("enabled", &O::enabled,
+                 "refine the reference lines jointly with keyframe poses (direction reference_to_current only)")
+          .Field("keyframe_interval", &O::keyframe_interval, AtLeast(1), "measured frames between keyframes")
+          .Field("max_keyframes", &O::max_keyframes, AtLeast(1), "keyframes kept in the refinement window")
+          .Field("max_iterations", &O::max_iterations, AtLeast(1), "Levenberg-Marquardt steps per refinement")
+          .Field("huber_sigma", &O::huber_sigma, Positive(), "Huber threshold of the segment residual (sigmas)")
+          .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
+          .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
+                 "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never)");
+  return schema;
+}
+
+void ReferenceRefinementOptions::Check(const std::string& where, const std::string& path) const {
+  ReferenceRefinementOptionsSchema().Validate(*this, where, path);
+}
+
+ReferenceRefiner::ReferenceRefiner(const ReferenceRefinementOptions& options, double endpoint_sigma_px)
+    : options_(options),
+      // Taylor's residual (weight 1) is (h1^2 + h1 h2 + h2^2) / (3 sigma^2) over the endpoint
+      // distances h1, h2; with sigma^2 = sigma_e^2 / 2 its information on the line's offset
+      // (h1 = h2) is that of two independent endpoints, 2 / sigma_e^2, and on its tilt
+      // (h1 = -h2) a third of it: a little conservative.
+      sigma_px_(endpoint_sigma_px / std::sqrt(2.0)),
+      min_triangulation_sine_(std::sin(options.min_triangulation_angle_deg * M_PI / 180.0)),
+      loss_(std::make_unique<ceres::HuberLoss>(options.huber_sigma)) {
+  options_.Check();
+  solver_options_.linear_solver_type = ceres::DENSE_SCHUR;
+  solver_options_.max_num_iterations = options_.max_iterations;
+  solver_options_.num_threads = 1;
+  solver_options_.logging_type = ceres::SILENT;
+  solver_options_.minimizer_progress_to_stdout = false;
+  PoseToParameters(Rigid3d(), reference_pose_);
+}
+
+void ReferenceRefiner::Reset(const StereoRig& rig) {
+  cameras_[0] = SegmentCamera::FromRig(rig, true);
+  cameras_[1] = SegmentCamera::FromRig(rig, false);
+  StartReference(0);
+}
+
+void ReferenceRefiner::StartReference(int lines) {
+  lines_.assign(lines, LineState());
+  keyframes_.clear();
+  frames_since_keyframe_ = 0;
+}
+
+void ReferenceRefiner::SetLine(int index, const PlueckerLine& line, bool usable, const Segment2d& left,
+                               const Segment2d& right, const Eigen::Vector3d& left_line) {
+  LineState& s = lines_[index];
+  s.left_line = left_line;
+  s.usable = usable && LineToParameters(line, s.parameters);
+  s.refined = false;
+  s.left = left;
+  s.right = right;
+}
+
+bool ReferenceRefiner::CountFrame() {
+  if (++frames_since_keyframe_ < options_.keyframe_interval) return false;
+  frames_since_keyframe_ = 0;
+  return true;
+}
+
+Eigen::Matrix<double, 6, 4> ReferenceRefiner::TangentBasis(int index) const {
+  Eigen::Matrix<double, kLineAmbientSize, 4, Eigen::RowMajor> j;
+  line_manifold_.PlusJacobian(lines_[index].parameters, j.data());
+  return j;
+}
+
+bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
+                                           Rigid3d* newest_cam_from_ref) {
+  keyframes_.emplace_back();
+  PoseToParameters(cam_from_ref, keyframes_.back().pose);
+  keyframes_.back().observations = observations;
+  if (options_.min_triangulation_angle_deg > 0.0) {
+    // The back-projected planes of the reference's left segment and this keyframe's
+    // (StereoPairLine with the keyframe as the second camera).
+    for (const Observation& o : observations) {
+      LineState& l = lines_[o.line];
+      if (l.usable) continue;
+      double sine = 0.0;
+      const PlueckerLine line = StereoPairLine(cam_from_ref, l.left_line, o.left_line, nullptr, nullptr, &sine);
+      if (sine >= min_triangulation_sine_) l.usable = LineToParameters(line, l.parameters);
+    }
+  }
+  while (static_cast<int>(keyframes_.size()) > options_.max_keyframes) keyframes_.pop_front();
+
+  // Lines enter with at least one keyframe observation; keyframes with at least two such lines
+  // (one line leaves a pose direction free).
+  for (LineState& l : lines_) l.observations = 0;
+  for (const Keyframe& k : keyframes_) {
+    for (const Observation& o : k.observations) lines_[o.line].observations += lines_[o.line].usable ? 1 : 0;
+  }
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
+  problem.AddParameterBlock(reference_pose_, kPoseAmbientSize);
+  problem.SetParameterBlockConstant(reference_pose_);
+  ordering->AddElementToGroup(reference_pose_, 1);
+  size_t used = 0;
+  residuals_.clear();
+  auto add = [&](double* pose, int line, const Segment2d& left, const Segment2d& right) {
+    double* parameters = lines_[line].parameters;
+    if (!problem.HasParameterBlock(parameters)) {
+      problem.AddParameterBlock(parameters, kLineAmbientSize, &line_manifold_);
+      ordering->AddElementToGroup(parameters, 0);
+    }
+    for (int c = 0; c < 2; ++c) {
+      if (used == costs_.size()) costs_.emplace_back();
+      costs_[used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_);
+      problem.AddResidualBlock(&costs_[used], loss_.get(), pose, parameters);
+      residuals_.push_back({pose, line});
+      ++used;
+    }
+  };
+  bool newest_in = false;
+  for (Keyframe& k : keyframes_) {
+    const int seen = static_cast<int>(std::count_if(k.observations.begin(), k.observations.end(),
+                                                    [&](const Observation& o) { return lines_[o.line].observations > 0; }));
+    if (seen < 2) continue;
+    problem.AddParameterBlock(k.pose, kPoseAmbientSize, &pose_manifold_);
+    ordering->AddElementToGroup(k.pose, 1);
+    for (const Observation& o : k.observations) {
+      if (lines_[o.line].usable) add(k.pose, o.line, o.left, o.right);
+    }
+    newest_in = &k == &keyframes_.back();
+  }
+  if (!newest_in) return false;
+  for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
+    if (problem.HasParameterBlock(lines_[i].parameters)) add(reference_pose_, i, lines_[i].left, lines_[i].right);
+  }
+
+  // Keep the start: a failed solve leaves everything as it was.
+  std::vector<double> saved;
+  for (const Keyframe& k : keyframes_) saved.insert(saved.end(), k.pose, k.pose + kPoseAmbientSize);
+  for (const LineState& l : lines_) saved.insert(saved.end(), l.parameters, l.parameters + kLineAmbientSize);
+  solver_options_.linear_solver_ordering = ordering;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options_, &problem, &summary);
+  solver_options_.linear_solver_ordering.reset();
+  ++solves_;
+  bool finite = summary.IsSolutionUsable();
+  for (const Keyframe& k : keyframes_) finite = finite && Eigen::Map<const Eigen::Matrix<double, 12, 1>>(k.pose).allFinite();
+  for (const LineState& l : lines_) finite = finite && Eigen::Map<const Eigen::Matrix<double, 6, 1>>(l.parameters).allFinite();
+  if (!finite) {
+    const double* s = saved.data();
+    for (Keyframe& k : keyframes_) {
+      std::copy_n(s, kPoseAmbientSize, k.pose);
+      s += kPoseAmbientSize;
+    }
+    for (LineState& l : lines_) {
+      std::copy_n(s, kLineAmbientSize, l.parameters);
+      s += kLineAmbientSize;
+    }
+    return false;
+  }
+
+  // Each line's covariance: the inverse of its block of J^T J (whitened residuals, tangent
+  // coordinates), the poses held at their solution.
+  std::vector<Eigen::Matrix4d> information(lines_.size(), Eigen::Matrix4d::Zero());
+  Eigen::Vector2d residual;
+  Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
+  Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
+  for (size_t k = 0; k < residuals_.size(); ++k) {
+    const int line = residuals_[k].line;
+    const double* parameters[2] = {residuals_[k].pose, lines_[line].parameters};
+    double* jacobians[2] = {d_pose.data(), d_line.data()};
+    if (!costs_[k].Evaluate(parameters, residual.data(), jacobians)) continue;
+    const Eigen::Matrix<double, 2, 4> j = d_line * TangentBasis(line);
+    information[line].noalias() += j.transpose() * j;
+  }
+  for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
+    LineState& l = lines_[i];
+    if (!problem.HasParameterBlock(l.parameters)) continue;
+    Eigen::LDLT<Eigen::Matrix4d> ldlt(information[i]);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) continue;
+    l.covariance = ldlt.solve(Eigen::Matrix4d::Identity());
+    l.refined = l.covariance.allFinite();
+  }
+  *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
+  return true;
+}
+
+}  // namespace slt
