@@ -155,6 +155,16 @@ void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector
 }
 
 int LineTransferModel::SetReference(const StereoFrame& frame) {
+  // Refined lines of the previous reference, carried into the new one when this frame's pose
+  // is known (RefineStructure ran on it): L_new = new_from_old L_old, with the covariance of
+  // the tangent moved along, C_new = B_new^+ A B_old C_old B_old^T A^T B_new^+T (A the
+  // transform of [n; d], B the tangent bases).
+  std::vector<std::pair<std::int64_t, ReferenceLine>> carried;
+  if (refiner_ && last_pose_valid_ && options_.refinement.carry_over) {
+    for (size_t i = 0; i < reference_.size(); ++i) {
+      if (reference_lines_[i].refined) carried.emplace_back(reference_[i].id, reference_lines_[i]);
+    }
+  }
   CollectStereoLines(frame, &reference_);
   reference_lines_.resize(reference_.size());
   for (size_t i = 0; i < reference_.size(); ++i) {
@@ -172,12 +182,37 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
       refiner_->SetLine(static_cast<int>(i), reference_lines_[i].line, !reference_[i].degenerate,
                         reference_[i].left.segment, reference_[i].right.segment, reference_[i].left.line);
     }
+    Matrix6d transform = Matrix6d::Zero();  // [n; d] -> new frame: [R, [t]x R; 0, R]
+    transform.topLeftCorner<3, 3>() = last_cam_from_ref_.rotation;
+    transform.topRightCorner<3, 3>() = Skew(last_cam_from_ref_.translation) * last_cam_from_ref_.rotation;
+    transform.bottomRightCorner<3, 3>() = last_cam_from_ref_.rotation;
+    size_t c = 0;
+    for (size_t i = 0; i < reference_.size() && c < carried.size(); ++i) {
+      while (c < carried.size() && carried[c].first < reference_[i].id) ++c;
+      if (c == carried.size() || carried[c].first != reference_[i].id) continue;
+      const ReferenceLine& old = carried[c].second;
+      const int index = static_cast<int>(i);
+      refiner_->SetCarriedLine(index, TransformPluecker(last_cam_from_ref_, old.line), Eigen::Matrix4d::Identity());
+      const Eigen::Matrix<double, 6, 4> basis = refiner_->TangentBasis(index);
+      const Eigen::Matrix<double, 4, 6> pseudo_inverse =
+          (basis.transpose() * basis).ldlt().solve(basis.transpose());
+      const Eigen::Matrix<double, 4, 4> move = pseudo_inverse * transform * old.line_d_tangent;
+      const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
+      refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
+      if (!refiner_->Refined(index)) continue;
+      ReferenceLine& line = reference_lines_[i];
+      line.line = refiner_->Line(index);
+      line.line_d_tangent = basis;
+      line.tangent_covariance = refiner_->Covariance(index);
+      line.refined = true;
+    }
   }
   matches_.clear();
   return CountUsable(reference_);
 }
 
 int LineTransferModel::SetCurrent(const StereoFrame& frame) {
+  last_pose_valid_ = false;
   CollectStereoLines(frame, &current_);
   current_stereo_ = CountUsable(current_);
   matches_.clear();
@@ -368,7 +403,10 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
 
 bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
                                         Rigid3d* refined_cam_from_ref) {
-  if (!refiner_ || !refiner_->CountFrame()) return false;
+  if (!refiner_) return false;
+  last_cam_from_ref_ = cam_from_ref;
+  last_pose_valid_ = true;
+  if (!refiner_->CountFrame()) return false;
   // The features of the update, and the lines not measured yet because the reference pair
   // does not define them (the refinement triangulates them from the keyframes).
   keyframe_observations_.clear();
@@ -392,6 +430,7 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
     line.refined = true;
   }
   *refined_cam_from_ref = refined;
+  if (options_.refinement.move_pose) last_cam_from_ref_ = refined;
   return options_.refinement.move_pose;
 }
 

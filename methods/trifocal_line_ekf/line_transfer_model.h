@@ -178,6 +178,10 @@ class LineTransferModel final : public FeatureModel {
 
   std::unique_ptr<ReferenceRefiner> refiner_;  // when refinement.enabled
   std::vector<ReferenceRefiner::Observation> keyframe_observations_;  // scratch
+  // The pose of the last frame given to RefineStructure (after its move), valid until the next
+  // SetCurrent: a new reference pair taken at that frame carries the refined lines over with it.
+  Rigid3d last_cam_from_ref_;
+  bool last_pose_valid_ = false;
 
   std::vector<StereoLine> reference_;
   std::vector<ReferenceLine> reference_lines_;  // parallel to reference_

@@ -1,12 +1,30 @@
 #include "methods/trifocal_line_ekf/reference_refinement.h"
 
+#include <ceres/numeric_diff_cost_function.h>
 #include <ceres/problem.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace slt {
+namespace {
+
+// The prior of a carried line: r = S Minus(L, L0), S^T S the inverse of its covariance.
+struct LinePrior {
+  bool operator()(const double* line, double* residual) const {
+    Eigen::Vector4d d;
+    LineManifold().Minus(line, prior, d.data());
+    Eigen::Map<Eigen::Vector4d> out(residual);
+    out = sqrt_information * d;
+    return true;
+  }
+  double prior[kLineAmbientSize];
+  Eigen::Matrix4d sqrt_information;
+};
+
+}  // namespace
 
 const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema() {
   using O = ReferenceRefinementOptions;
@@ -19,6 +37,8 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
           .Field("max_iterations", &O::max_iterations, AtLeast(1), "Levenberg-Marquardt steps per refinement")
           .Field("huber_sigma", &O::huber_sigma, Positive(), "Huber threshold of the segment residual (sigmas)")
           .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
+          .Field("carry_over", &O::carry_over,
+                 "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never)");
   return schema;
@@ -53,7 +73,8 @@ void ReferenceRefiner::Reset(const StereoRig& rig) {
 }
 
 void ReferenceRefiner::StartReference(int lines) {
-  lines_.assign(lines, LineState());
+  lines_.clear();
+  lines_.resize(lines);
   keyframes_.clear();
   frames_since_keyframe_ = 0;
 }
@@ -64,8 +85,28 @@ void ReferenceRefiner::SetLine(int index, const PlueckerLine& line, bool usable,
   s.left_line = left_line;
   s.usable = usable && LineToParameters(line, s.parameters);
   s.refined = false;
+  s.has_prior = false;
+  s.prior_cost.reset();
   s.left = left;
   s.right = right;
+}
+
+void ReferenceRefiner::SetCarriedLine(int index, const PlueckerLine& line, const Eigen::Matrix4d& covariance) {
+  LineState& s = lines_[index];
+  auto* prior = new LinePrior;
+  Eigen::LLT<Eigen::Matrix4d> llt(covariance);
+  if (!LineToParameters(line, s.parameters) || !LineToParameters(line, prior->prior) || llt.info() != Eigen::Success) {
+    delete prior;
+    return;
+  }
+  // S = L^-1 for C = L L^T: |S d|^2 = d^T C^-1 d.
+  prior->sqrt_information = llt.matrixL().solve(Eigen::Matrix4d::Identity());
+  s.prior_sqrt_information = prior->sqrt_information;
+  s.prior_cost.reset(new ceres::NumericDiffCostFunction<LinePrior, ceres::CENTRAL, 4, kLineAmbientSize>(prior));
+  s.has_prior = true;
+  s.usable = true;
+  s.refined = true;
+  s.covariance = covariance;
 }
 
 bool ReferenceRefiner::CountFrame() {
@@ -96,7 +137,21 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       if (sine >= min_triangulation_sine_) l.usable = LineToParameters(line, l.parameters);
     }
   }
-  while (static_cast<int>(keyframes_.size()) > options_.max_keyframes) keyframes_.pop_front();
+  // Over the window: drop the keyframe nearest its successor (camera centres; never the
+  // newest), so that the window keeps the widest spread of viewpoints -- the parallax that
+  // defines the lines -- rather than only the latest frames.
+  while (static_cast<int>(keyframes_.size()) > options_.max_keyframes) {
+    size_t drop = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k + 1 < keyframes_.size(); ++k) {
+      const double d = (PoseFromParameters(keyframes_[k].pose).Center() - PoseFromParameters(keyframes_[k + 1].pose).Center()).norm();
+      if (d < nearest) {
+        nearest = d;
+        drop = k;
+      }
+    }
+    keyframes_.erase(keyframes_.begin() + static_cast<std::ptrdiff_t>(drop));
+  }
 
   // Lines enter with at least one keyframe observation; keyframes with at least two such lines
   // (one line leaves a pose direction free).
@@ -143,7 +198,10 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   }
   if (!newest_in) return false;
   for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
-    if (problem.HasParameterBlock(lines_[i].parameters)) add(reference_pose_, i, lines_[i].left, lines_[i].right);
+    LineState& l = lines_[i];
+    if (!problem.HasParameterBlock(l.parameters)) continue;
+    add(reference_pose_, i, l.left, l.right);
+    if (l.has_prior) problem.AddResidualBlock(l.prior_cost.get(), nullptr, l.parameters);
   }
 
   // Keep the start: a failed solve leaves everything as it was.
@@ -188,6 +246,10 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
     LineState& l = lines_[i];
     if (!problem.HasParameterBlock(l.parameters)) continue;
+    if (l.has_prior) {
+      // Its prior's information (at the prior's tangent; the step since is small).
+      information[i].noalias() += l.prior_sqrt_information.transpose() * l.prior_sqrt_information;
+    }
     Eigen::LDLT<Eigen::Matrix4d> ldlt(information[i]);
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) continue;
     l.covariance = ldlt.solve(Eigen::Matrix4d::Identity());

@@ -27,6 +27,7 @@
 // current pose to the solved newest keyframe's pose (the current frame is that keyframe).
 #pragma once
 
+#include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
 #include <ceres/solver.h>
 
@@ -56,6 +57,10 @@ struct ReferenceRefinementOptions {
   // horizontal rig) are triangulated from the reference's left image and a keyframe's once
   // their back-projected planes meet at this angle, then refined like the others. 0 = never.
   double min_triangulation_angle_deg = 2.0;
+  // A new reference pair starts from the refined lines it shares with the previous one, moved
+  // into its frame with the current pose and kept as priors (SetCarriedLine), instead of their
+  // stereo triangulation from the new pair alone.
+  bool carry_over = true;
 
   void Check(const std::string& where = "reference refinement options", const std::string& path = "") const;
 };
@@ -76,6 +81,11 @@ class ReferenceRefiner {
   // does not define it; it waits for a keyframe to triangulate it.
   void SetLine(int index, const PlueckerLine& line, bool usable, const Segment2d& left, const Segment2d& right,
                const Eigen::Vector3d& left_line);
+
+  // Line `index` carried over from the previous reference pair: `line` (this reference's frame)
+  // with the covariance of its tangent, kept in every solve as a prior (Minus(L, line) ~
+  // N(0, covariance)), so that what earlier keyframes measured is not lost with them.
+  void SetCarriedLine(int index, const PlueckerLine& line, const Eigen::Matrix4d& covariance);
 
   // One observation of a keyframe: reference line `line` seen with these segments; left_line
   // is the left segment's normalised line.
@@ -110,6 +120,9 @@ class ReferenceRefiner {
     Eigen::Vector3d left_line;
     Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
     int observations = 0;  // per solve: keyframe segments
+    bool has_prior = false;  // carried over: prior_cost is its prior residual
+    std::unique_ptr<ceres::CostFunction> prior_cost;
+    Eigen::Matrix4d prior_sqrt_information;
   };
   struct Keyframe {
     double pose[kPoseAmbientSize];
