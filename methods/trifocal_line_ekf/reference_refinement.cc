@@ -40,7 +40,7 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
           .Field("carry_over", &O::carry_over,
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
-                 "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never)");
+                 "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)");
   return schema;
 }
 
@@ -229,31 +229,69 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     return false;
   }
 
-  // Each line's covariance: the inverse of its block of J^T J (whitened residuals, tangent
-  // coordinates), the poses held at their solution.
-  std::vector<Eigen::Matrix4d> information(lines_.size(), Eigen::Matrix4d::Zero());
+  // Each line's covariance: its block of the inverse of the problem's Gauss-Newton information
+  // J^T J (whitened residuals, tangent coordinates; the Huber weights left out), i.e. the
+  // line's uncertainty given the reference pair, marginalised over the keyframe poses. (The
+  // inverse of the line's own block alone, poses held fixed, was far too confident: NEES in
+  // the thousands on the room loop.)
+  std::vector<int> line_offset(lines_.size(), -1);
+  int size = 0;
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    if (problem.HasParameterBlock(lines_[i].parameters)) {
+      line_offset[i] = size;
+      size += 4;
+    }
+  }
+  std::vector<std::pair<const double*, int>> pose_offset;
+  for (const Keyframe& k : keyframes_) {
+    if (problem.HasParameterBlock(k.pose)) {
+      pose_offset.emplace_back(k.pose, size);
+      size += 6;
+    }
+  }
+  auto offset_of_pose = [&](const double* pose) {
+    for (const auto& [p, o] : pose_offset) {
+      if (p == pose) return o;
+    }
+    return -1;  // the reference pair: fixed
+  };
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(size, size);
   Eigen::Vector2d residual;
   Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
   Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
+  Eigen::Matrix<double, kPoseAmbientSize, 6, Eigen::RowMajor> pose_plus;
   for (size_t k = 0; k < residuals_.size(); ++k) {
     const int line = residuals_[k].line;
     const double* parameters[2] = {residuals_[k].pose, lines_[line].parameters};
     double* jacobians[2] = {d_pose.data(), d_line.data()};
     if (!costs_[k].Evaluate(parameters, residual.data(), jacobians)) continue;
-    const Eigen::Matrix<double, 2, 4> j = d_line * TangentBasis(line);
-    information[line].noalias() += j.transpose() * j;
+    const Eigen::Matrix<double, 2, 4> j_line = d_line * TangentBasis(line);
+    const int l = line_offset[line];
+    information.block<4, 4>(l, l).noalias() += j_line.transpose() * j_line;
+    const int p = offset_of_pose(residuals_[k].pose);
+    if (p < 0) continue;
+    pose_manifold_.PlusJacobian(residuals_[k].pose, pose_plus.data());
+    const Eigen::Matrix<double, 2, 6> j_pose = d_pose * pose_plus;
+    information.block<6, 6>(p, p).noalias() += j_pose.transpose() * j_pose;
+    information.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
+    information.block<6, 4>(p, l) = information.block<4, 6>(l, p).transpose();
   }
-  for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
-    LineState& l = lines_[i];
-    if (!problem.HasParameterBlock(l.parameters)) continue;
-    if (l.has_prior) {
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    const int l = line_offset[i];
+    if (l >= 0 && lines_[i].has_prior) {
       // Its prior's information (at the prior's tangent; the step since is small).
-      information[i].noalias() += l.prior_sqrt_information.transpose() * l.prior_sqrt_information;
+      information.block<4, 4>(l, l).noalias() += lines_[i].prior_sqrt_information.transpose() * lines_[i].prior_sqrt_information;
     }
-    Eigen::LDLT<Eigen::Matrix4d> ldlt(information[i]);
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) continue;
-    l.covariance = ldlt.solve(Eigen::Matrix4d::Identity());
-    l.refined = l.covariance.allFinite();
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+    const Eigen::MatrixXd covariance = ldlt.solve(Eigen::MatrixXd::Identity(size, size));
+    for (size_t i = 0; i < lines_.size(); ++i) {
+      const int l = line_offset[i];
+      if (l < 0) continue;
+      lines_[i].covariance = covariance.block<4, 4>(l, l);
+      lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
+    }
   }
   *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
   return true;

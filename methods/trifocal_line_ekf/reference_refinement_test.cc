@@ -61,6 +61,7 @@ TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulates
   ReferenceRefinementOptions options;
   options.enabled = true;
   options.keyframe_interval = 1;
+  options.min_triangulation_angle_deg = 2.0;
   ReferenceRefiner refiner(options, 1.0);
   refiner.Reset(rig);
   refiner.StartReference(static_cast<int>(kLines.size()));
