@@ -159,11 +159,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   for (const Keyframe& k : keyframes_) {
     for (const Observation& o : k.observations) lines_[o.line].observations += lines_[o.line].usable ? 1 : 0;
   }
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
+  ceres::Problem problem(BorrowingProblemOptions());
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
   problem.AddParameterBlock(reference_pose_, kPoseAmbientSize);
   problem.SetParameterBlockConstant(reference_pose_);
