@@ -229,20 +229,23 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   // J^T J (whitened residuals, tangent coordinates; the Huber weights left out), i.e. the
   // line's uncertainty given the reference pair, marginalised over the keyframe poses. (The
   // inverse of the line's own block alone, poses held fixed, was far too confident: NEES in
-  // the thousands on the room loop.)
+  // the thousands on the room loop.) With the information [A B; B^T D] (A block-diagonal over
+  // the lines, D the poses') and S = D - B^T A^-1 B, the block of line i is
+  //     A_i^-1 + A_i^-1 B_i S^-1 B_i^T A_i^-1.
   std::vector<int> line_offset(lines_.size(), -1);
-  int size = 0;
+  int line_rows = 0;
   for (size_t i = 0; i < lines_.size(); ++i) {
     if (problem.HasParameterBlock(lines_[i].parameters)) {
-      line_offset[i] = size;
-      size += 4;
+      line_offset[i] = line_rows;
+      line_rows += 4;
     }
   }
   std::vector<std::pair<const double*, int>> pose_offset;
+  int pose_rows = 0;
   for (const Keyframe& k : keyframes_) {
     if (problem.HasParameterBlock(k.pose)) {
-      pose_offset.emplace_back(k.pose, size);
-      size += 6;
+      pose_offset.emplace_back(k.pose, pose_rows);
+      pose_rows += 6;
     }
   }
   auto offset_of_pose = [&](const double* pose) {
@@ -251,7 +254,9 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
     return -1;  // the reference pair: fixed
   };
-  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(size, size);
+  Eigen::MatrixXd a_blocks = Eigen::MatrixXd::Zero(line_rows, 4);  // A_i stacked
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(line_rows, pose_rows);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(pose_rows, pose_rows);
   Eigen::Vector2d residual;
   Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
   Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
@@ -263,29 +268,43 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     if (!costs_[k].Evaluate(parameters, residual.data(), jacobians)) continue;
     const Eigen::Matrix<double, 2, 4> j_line = d_line * TangentBasis(line);
     const int l = line_offset[line];
-    information.block<4, 4>(l, l).noalias() += j_line.transpose() * j_line;
+    a_blocks.block<4, 4>(l, 0).noalias() += j_line.transpose() * j_line;
     const int p = offset_of_pose(residuals_[k].pose);
     if (p < 0) continue;
     pose_manifold_.PlusJacobian(residuals_[k].pose, pose_plus.data());
     const Eigen::Matrix<double, 2, 6> j_pose = d_pose * pose_plus;
-    information.block<6, 6>(p, p).noalias() += j_pose.transpose() * j_pose;
-    information.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
-    information.block<6, 4>(p, l) = information.block<4, 6>(l, p).transpose();
+    d.block<6, 6>(p, p).noalias() += j_pose.transpose() * j_pose;
+    b.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
   }
+  Eigen::MatrixXd a_inverse_b(line_rows, pose_rows);
+  std::vector<Eigen::Matrix4d> a_inverse(lines_.size());
+  std::vector<bool> ok(lines_.size(), false);
+  Eigen::MatrixXd schur = d;
   for (size_t i = 0; i < lines_.size(); ++i) {
     const int l = line_offset[i];
-    if (l >= 0 && lines_[i].has_prior) {
+    if (l < 0) continue;
+    if (lines_[i].has_prior) {
       // Its prior's information (at the prior's tangent; the step since is small).
-      information.block<4, 4>(l, l).noalias() += lines_[i].prior_sqrt_information.transpose() * lines_[i].prior_sqrt_information;
+      a_blocks.block<4, 4>(l, 0).noalias() += lines_[i].prior_sqrt_information.transpose() * lines_[i].prior_sqrt_information;
     }
+    const Eigen::LDLT<Eigen::Matrix4d> ldlt(a_blocks.block<4, 4>(l, 0));
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
+      a_inverse_b.middleRows<4>(l).setZero();
+      continue;
+    }
+    ok[i] = true;
+    a_inverse[i] = ldlt.solve(Eigen::Matrix4d::Identity());
+    a_inverse_b.middleRows<4>(l).noalias() = a_inverse[i] * b.middleRows<4>(l);
+    schur.noalias() -= b.middleRows<4>(l).transpose() * a_inverse_b.middleRows<4>(l);
   }
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);
-  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
-    const Eigen::MatrixXd covariance = ldlt.solve(Eigen::MatrixXd::Identity(size, size));
+  const Eigen::LDLT<Eigen::MatrixXd> schur_ldlt(schur);
+  if (pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive()) {
+    const Eigen::MatrixXd schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
     for (size_t i = 0; i < lines_.size(); ++i) {
       const int l = line_offset[i];
-      if (l < 0) continue;
-      lines_[i].covariance = covariance.block<4, 4>(l, l);
+      if (l < 0 || !ok[i]) continue;
+      const auto x = a_inverse_b.middleRows<4>(l);
+      lines_[i].covariance = a_inverse[i] + x * schur_inverse * x.transpose();
       lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
     }
   }
