@@ -77,6 +77,12 @@ inline const char* StatusReasonName(StatusReason reason) {
   return "unknown";
 }
 
+// A frame whose pose fewer than this fraction of its measurable features agree with is
+// reported lost (reason kFewAgree): when every segment is an outlier, a few of them still fit
+// some pose by chance, and that pose is no measurement of the camera (issue 21).
+inline constexpr double kMinAgreeingFraction = 0.25;
+inline bool FewAgree(int agreeing, int measurable) { return agreeing < kMinAgreeingFraction * measurable; }
+
 struct TrackerOutput {
   Rigid3d cam_from_world;  // left camera at this frame; world = left camera at the first frame
   // Covariance of cam_from_world in the trackers' perturbation convention (docs/conventions.md):

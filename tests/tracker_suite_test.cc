@@ -223,9 +223,6 @@ TEST_P(TrackerSuite, EveryLineAnOutlierIsNeverTracking) {
   // Every segment replaced by a random one: the few that fit some pose by chance must not be
   // reported as tracking (both EKFs did on 8-14 of 100 frames, 69-118 deg off; issue 21).
   if (info().plumbing_only) GTEST_SKIP() << "plumbing-only tracker: never moves by construction";
-  // Known failure, left to the tracker's owner (issue 21): taylor_line_sfm reports tracking on
-  // frames 2 and 97 of this sequence.
-  if (GetParam() == "taylor_line_sfm") GTEST_SKIP() << "known failure: says tracking on 2 of 99 outlier frames";
   const SimulatedSequence sim = Simulated({{"frames", 100}, {"noise", {{"endpoint_px", 1.0}}}, {"outliers", {{"rate", 1.0}}}});
   auto tracker = Make();
   const TrackRun run = RunTracker(*tracker, sim.sequence);

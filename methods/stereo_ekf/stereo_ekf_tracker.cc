@@ -22,10 +22,6 @@ constexpr double kMinInlierFraction = 0.5;
 constexpr double kMaxNormalizedCost = 2.0;
 // The standard normal's 99.9 % quantile (of the Wilson-Hilferty bound in HealthyCost).
 constexpr double kStandardNormal999 = 3.09;
-// A frame whose update uses fewer than this fraction of the measurable features is reported
-// lost: when every segment is an outlier, a few of them still fit some pose by chance, and
-// that pose is no measurement of the camera (issue 21).
-constexpr double kMinUsedFraction = 0.25;
 // The median of chi-square(4), ChiSquareQuantile(0.5, 4) = 3.3567, rounded as when the
 // noise-scale adaptation was measured. Kept: the exact value changes almost every trial of every
 // experiment with adaptive noise (last digits of the errors), and every committed result with it.
@@ -383,7 +379,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
       ++counters_.lost_frames;
       out.status = TrackingStatus::kLost;
       out.reason = StatusReason::kUnconstrained;
-    } else if (state->used < kMinUsedFraction * state->valid) {
+    } else if (FewAgree(state->used, state->valid)) {
       // Most measurable features disagree with the pose: a handful of segments that fit it by
       // chance (every segment an outlier) is no evidence of where the camera is.
       ++counters_.lost_frames;

@@ -147,6 +147,32 @@ int LineSfmWindow::KnownLinesInBothImagesOfNewest() {
   return count;
 }
 
+int LineSfmWindow::LinesAgreeingInNewest(double rms_sigma) {
+  if (frames_.empty()) return 0;
+  const FrameState& newest = frames_.back();
+  // |r|^2 = (rms / sigma)^2 with unit weight (taylor_segment_cost.h).
+  const double threshold = rms_sigma * rms_sigma;
+  // visit: this call's mark for a line seen so far; a disagreeing segment marks it `failed`.
+  const int seen = ++visit_;
+  const int failed = ++visit_;
+  for (int camera = 0; camera < 2; ++camera) {
+    for (const WindowObservation& o : newest.images[camera]) {
+      const auto it = lines_.find(o.id);
+      if (o.outlier || it == lines_.end()) continue;
+      LineState& line = it->second;
+      if (line.visit != seen && line.visit != failed) line.visit = seen;
+      TaylorSegmentCost cost;
+      cost.Set(&cameras_[camera], o.segment, 1.0, options_.sigma_px);
+      const double* parameters[] = {newest.pose, line.parameters};
+      Eigen::Vector2d r;
+      if (!cost.Evaluate(parameters, r.data(), nullptr) || !(r.squaredNorm() <= threshold)) line.visit = failed;
+    }
+  }
+  int agreeing = 0;
+  for (const auto& [id, line] : lines_) agreeing += line.visit == seen;
+  return agreeing;
+}
+
 Rigid3d LineSfmWindow::Pose(int age) const { return PoseFromParameters(frames_[frames_.size() - 1 - age].pose); }
 
 void LineSfmWindow::SetNewestPose(const Rigid3d& cam_from_world) { PoseToParameters(cam_from_world, frames_.back().pose); }

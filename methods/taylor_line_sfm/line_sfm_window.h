@@ -109,6 +109,10 @@ class LineSfmWindow {
   int KnownLinesInNewest();
   // Lines of the map the newest frame observes in both images.
   int KnownLinesInBothImagesOfNewest();
+  // Lines of the map the newest frame observes whose every segment there (not rejected) lies
+  // within rms_sigma * sigma_px of the line at the newest pose. It judges the lines the last
+  // solve left out (seen in too few frames) as well: they are independent evidence of the pose.
+  int LinesAgreeingInNewest(double rms_sigma);
 
   int NumFrames() const { return static_cast<int>(frames_.size()); }
   int NumLines() const { return static_cast<int>(lines_.size()); }

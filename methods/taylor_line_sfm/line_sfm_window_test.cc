@@ -282,6 +282,30 @@ TEST(LineSfmWindow, AFrameWithOneLineIsNotSolved) {
   EXPECT_EQ(window.Pose(0).ToMatrix4(), guess.ToMatrix4());
 }
 
+TEST(LineSfmWindow, CountsTheLinesWhoseNewestSegmentsFitThemAtTheNewestPose) {
+  const SimulatedSequence sim = NoiseFree(2);
+  LineSfmWindow window{TaylorLineSfmOptions()};
+  window.Reset(sim.sequence.rig);
+  Add(Rigid3d(), sim.sequence.frames[0], &window);
+  window.TriangulateNewLines();
+  // Frame 1 at its true pose, but the left segment of its first line moved 20 px across.
+  StereoFrame moved = sim.sequence.frames[1];
+  ASSERT_FALSE(moved.left.empty());
+  Segment2d& s = moved.left[0].segment;
+  const Eigen::Vector2d normal = Eigen::Vector2d(s(1) - s(3), s(2) - s(0)).normalized();
+  s += 20.0 * (Segment2d() << normal, normal).finished();
+  Add(TrueCamFromWorld(sim, 1), moved, &window);
+  const int known = window.KnownLinesInNewest();
+  ASSERT_GT(known, 10);
+  // Noise-free segments at the true pose lie on their lines (well within 1 sigma); the moved
+  // one is about 20 px / 1.5 px = 13 sigma away, so its line no longer agrees below that.
+  EXPECT_EQ(window.LinesAgreeingInNewest(1.0), known - 1);
+  EXPECT_EQ(window.LinesAgreeingInNewest(20.0), known);
+  // A wrong pose (5 cm sideways) leaves no line agreeing within 1 sigma.
+  window.SetNewestPose(ExpSE3((Vector6d() << 0.05, 0, 0, 0, 0, 0).finished()) * TrueCamFromWorld(sim, 1));
+  EXPECT_EQ(window.LinesAgreeingInNewest(1.0), 0);
+}
+
 TEST(LineSfmWindow, LinesTriangulatedInTheNewestFrameWaitForASecondFrame) {
   const SimulatedSequence sim = NoiseFree(3);
   LineSfmWindow window{TaylorLineSfmOptions()};

@@ -49,13 +49,26 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
     counters_.rejected_observations += s.rejected_observations;
     counters_.dropped_lines += s.dropped_lines;
   }
-  if (s.solved && s.newest_lines >= 2 && s.newest_observations >= 3) {
+  const bool solved = s.solved && s.newest_lines >= 2 && s.newest_observations >= 3;
+  if (solved) {
     out.cam_from_world = window_.Pose(0);
     // The increment between the two newest frames as this solve left them.
     velocity_ = LogSE3(out.cam_from_world * window_.Pose(1).Inverse());
     out.status = TrackingStatus::kTracking;
     out.features_used = s.newest_lines;
     out.features_outside_gate = out.features_available - out.features_used;
+    // Only the status: the solve's pose stands (as the EKFs do). Every line the frame sees is
+    // judged at the solved pose, the ones too new for the solve too (they are independent
+    // evidence); under half agreeing, the pose rests on a minority of what the frame sees.
+    const int agreeing = window_.LinesAgreeingInNewest(options_.outlier_rms_sigma);
+    if (FewAgree(agreeing, out.features_available)) {
+      out.status = TrackingStatus::kLost;
+      out.reason = StatusReason::kFewAgree;
+      ++counters_.lost_frames;
+    } else if (2 * agreeing < out.features_available) {
+      out.status = TrackingStatus::kDegraded;
+      ++counters_.degraded_frames;
+    }
   } else {
     velocity_ *= options_.lost_velocity_decay;
     out.cam_from_world = ExpSE3(velocity_) * previous;
@@ -68,7 +81,7 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
   const TriangulationReport t = window_.TriangulateNewLines();
   counters_.lines_triangulated += t.triangulated;
   counters_.degenerate_triangulations += t.degenerate;
-  if (out.status == TrackingStatus::kTracking) known_lines_ = window_.NumLines();
+  if (solved) known_lines_ = window_.NumLines();
   return out;
 }
 

@@ -16,7 +16,11 @@
 //   5. status: lost when the newest frame has fewer than two usable lines (lines of the problem
 //      it observes), fewer than three segments of them, or the solve failed (a Ceres failure or
 //      a non-finite solution): the pose is then the prediction with the velocity damped by
-//      lost_velocity_decay, never a non-finite value.
+//      lost_velocity_decay, never a non-finite value. A solved frame is judged by every map
+//      line it sees, those too new for the solve included: a line agrees when its segments
+//      there lie within outlier_rms_sigma of it at the solved pose. Under a quarter agreeing
+//      (pose_tracker.h FewAgree) the frame is lost (few_agree), under half degraded; the
+//      solved pose stands either way.
 //
 // Options (JSON): TaylorLineSfmOptions (taylor_line_sfm_options.h), flat.
 #pragma once
@@ -38,7 +42,8 @@ class TaylorLineSfmTracker final : public PoseTracker {
   // Counters since Reset, for tests and diagnostics.
   struct Counters {
     int frames = 0;
-    int lost_frames = 0;
+    int lost_frames = 0;      // no usable solve, or under a quarter of the lines agree with it
+    int degraded_frames = 0;  // solved, but under half of the lines the frame sees agree
     int solved_frames = 0;    // frames whose window was solved (the newest frame took part)
     int solves = 0;           // Ceres runs (two on a frame where outliers were rejected)
     int solve_failures = 0;   // frames whose solution was not usable (kept the previous state)
