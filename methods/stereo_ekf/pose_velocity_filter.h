@@ -46,6 +46,9 @@ class PoseVelocityFilter {
   // widened the gate and let outliers in when the features came back (measured on the
   // feature-count sweep with 20-30 % outliers).
   void DampVelocity(double factor);
+  // Moves the pose to `cam_from_ref` (re-estimated with refined structure), keeping the
+  // velocity and the covariance.
+  void MovePose(const Rigid3d& cam_from_ref) { cam_from_ref_ = cam_from_ref; }
   // The current camera becomes the reference: the relative pose is exactly the identity.
   void StartNewReferencePair();
 

@@ -412,6 +412,14 @@ void StereoEkfTracker::Assess(FrameState* state) {
   SetOutputPose(&out);
 }
 
+void StereoEkfTracker::RefineStructure(FrameState* state) {
+  if (state->out.status == TrackingStatus::kLost) return;
+  Rigid3d refined;
+  if (!model_->RefineStructure(filter_.cam_from_ref(), inliers_, &refined)) return;
+  filter_.MovePose(refined);
+  SetOutputPose(&state->out);
+}
+
 void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* state) {
   const int remaining =
       options_.count_features == FeatureCount::kGated ? state->used : static_cast<int>(valid_.size());
@@ -447,6 +455,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
   RobustStart(&state);
   Update(&state);
   Assess(&state);
+  RefineStructure(&state);
   NewReferencePair(frame, &state);
   return state.out;
 }

@@ -91,6 +91,9 @@ class StereoEkfTracker : public PoseTracker {
   void RobustStart(FrameState* state);
   void Update(FrameState* state);
   void Assess(FrameState* state);
+  // Lets the model refine its reference structure (FeatureModel::RefineStructure) after a
+  // measured frame, and moves the pose where the model says.
+  void RefineStructure(FrameState* state);
   void NewReferencePair(const StereoFrame& frame, FrameState* state);
   // Pose and covariance of the output in the world: cam_from_world = cam_from_ref *
   // ref_from_world, so with independent errors (left perturbations, docs/conventions.md)
