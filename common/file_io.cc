@@ -112,6 +112,33 @@ void CheckWritable(const std::string& what, const std::string& path) {
   if (!existed) ::unlink(path.c_str());
 }
 
+std::string JoinPath(const std::string& dir, const std::string& file) { return (fs::path(dir) / file).string(); }
+
+void CreateDirectories(const std::string& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) throw std::runtime_error(dir + ": cannot create directory (" + error.message() + ")");
+}
+
+std::string StagingDir(const std::string& dir) {
+  std::string staging = fs::path(dir).lexically_normal().string();
+  while (staging.size() > 1 && staging.back() == '/') staging.pop_back();
+  return staging + ".partial";
+}
+
+void ReplaceDirectory(const std::string& staging, const std::string& dir) {
+  std::error_code error;
+  const bool replaces = fs::exists(dir, error);
+  const std::string old = dir + ".old." + std::to_string(::getpid());
+  if (replaces) {
+    fs::rename(dir, old, error);
+    if (error) throw std::runtime_error(dir + ": cannot move aside (" + error.message() + "); the new one is in " + staging);
+  }
+  fs::rename(staging, dir, error);
+  if (error) throw std::runtime_error(staging + ": cannot move to " + dir + " (" + error.message() + ")");
+  if (replaces) fs::remove_all(old, error);
+}
+
 void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);

@@ -38,6 +38,17 @@ void CheckWritable(const std::string& what, const std::string& path);
 void CheckOutputsBeforeWork(const std::vector<std::pair<std::string, std::string>>& outputs,
                             std::vector<std::string> inputs);
 
+// dir/file, as a string.
+std::string JoinPath(const std::string& dir, const std::string& file);
+// Creates `dir` and its parents when absent. Throws std::runtime_error "<dir>: cannot create
+// directory (<why>)".
+void CreateDirectories(const std::string& dir);
+// An output directory is written whole or not at all, like a file: everything goes into
+// StagingDir(dir) ("<dir>.partial", trailing slashes dropped), which ReplaceDirectory then
+// renames to `dir`; the old `dir`, if any, is moved aside first and removed last. Throws
+// std::runtime_error naming both directories when a rename fails.
+std::string StagingDir(const std::string& dir);
+void ReplaceDirectory(const std::string& staging, const std::string& dir);
 // Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and
 // rename, so readers never see a half-written file; an existing device or FIFO directly.
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);

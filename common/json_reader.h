@@ -85,6 +85,9 @@ class JsonReader {
   std::set<std::string> known_;
 };
 
+// The key path of an array element: "key[i]".
+inline std::string IndexedKey(const std::string& key, size_t i) { return key + "[" + std::to_string(i) + "]"; }
+
 // For the Check() methods of option structs: throws ConfigError
 // "<where>: key '<path>.<key>': <reason>" (path may be empty).
 [[noreturn]] void ThrowOptionError(const std::string& where, const std::string& path,

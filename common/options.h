@@ -1,7 +1,8 @@
 // Option structs declared once. A struct S keeps its fields with their defaults (the C++
 // declaration); one OptionSchema<S> lists each field once more with its JSON key, its allowed
 // range or enum values and a one-line doc, and everything else derives from that list:
-//   Read     strict JSON types (JsonReader::Get), enum names parsed once into the enum, then Check;
+//   Read     strict JSON types (JsonReader::Get), enum names parsed once into the enum, nested
+//            objects and arrays of objects with their own schemas, then Check;
 //   ToJson   every field (what --print-config and config.resolved.json show);
 //   Validate each range in order, then the struct-wide checks; errors are ConfigError
 //            "<where>: key '<path>.<key>': <reason>" (common/json_reader.h);
@@ -162,6 +163,20 @@ class OptionSchema {
     entries_.push_back(std::move(e));
     return std::move(*this);
   }
+  // A JSON object kept as given (options passed on to another part, read there).
+  OptionSchema&& Field(std::string key, nlohmann::json S::*member, std::string doc) && {
+    Entry e = MakeEntry(std::move(key), std::move(doc), "object");
+    const std::string k = e.key;
+    e.read = [k, member](JsonReader& r, S* s) {
+      const nlohmann::json* v = r.Find(k);
+      if (v == nullptr) return;
+      if (!v->is_object()) r.Fail(k, std::string("expected an object, got ") + v->type_name());
+      s->*member = *v;
+    };
+    e.write = [member](const S& s) { return s.*member; };
+    entries_.push_back(std::move(e));
+    return std::move(*this);
+  }
   // An enum written as one of `names`.
   template <typename E, typename = std::enable_if_t<std::is_enum_v<E>>>
   OptionSchema&& Field(std::string key, E S::*member, EnumNames<E> names, std::string doc) && {
@@ -212,6 +227,40 @@ class OptionSchema {
     };
     e.list_child = [member, child](const S& s, const std::string& key, std::vector<OptionDoc>* out) {
       child->List(s.*member, key, out);
+    };
+    entries_.push_back(std::move(e));
+    return std::move(*this);
+  }
+  // An array of objects, each read and written with its own schema (key paths "key[i].field");
+  // present, it replaces the default elements.
+  template <typename C>
+  OptionSchema&& Array(std::string key, std::vector<C> S::*member, const OptionSchema<C>& schema, std::string doc) && {
+    Entry e = MakeEntry(std::move(key), std::move(doc), "array of objects");
+    const std::string k = e.key;
+    const OptionSchema<C>* child = &schema;  // schemas are static: they outlive this one
+    e.read = [k, member, child](JsonReader& r, S* s) {
+      const nlohmann::json* v = r.Find(k);
+      if (v == nullptr) return;
+      if (!v->is_array()) r.Fail(k, std::string("expected an array of objects, got ") + v->type_name());
+      (s->*member).assign(v->size(), C());
+      for (size_t i = 0; i < v->size(); ++i) {
+        JsonReader item((*v)[i], r.where(), IndexedKey(r.KeyPath(k), i));
+        child->ReadFields(item, &(s->*member)[i]);
+        item.RejectUnknownKeys();
+      }
+    };
+    e.write = [member, child](const S& s) {
+      nlohmann::json items = nlohmann::json::array();
+      for (const C& item : s.*member) items.push_back(child->ToJson(item));
+      return items;
+    };
+    e.validate_child = [k, member, child](const S& s, const std::string& where, const std::string& path) {
+      for (size_t i = 0; i < (s.*member).size(); ++i) {
+        child->Validate((s.*member)[i], where, IndexedKey(path.empty() ? k : path + "." + k, i));
+      }
+    };
+    e.list_child = [child](const S&, const std::string& key, std::vector<OptionDoc>* out) {
+      child->List(C(), key + "[]", out);
     };
     entries_.push_back(std::move(e));
     return std::move(*this);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/json_changes.h"
+
 namespace slt {
 namespace {
 
@@ -72,6 +74,47 @@ TEST(OptionSchema, ErrorsNameTheFileAndTheDottedKey) {
   EXPECT_EQ(ErrorOf({{"on", false}, {"count", 4}}), "o.json: key 'top.count': must be 3 when off");
   EXPECT_EQ(ErrorOf({{"cnt", 4}}), "o.json: key 'top.cnt': unknown key");
   EXPECT_EQ(ErrorOf({{"on", false}}), "no error");
+}
+
+struct List {
+  std::vector<Inner> items = {Inner()};
+  nlohmann::json passed = nlohmann::json::object();
+};
+
+const OptionSchema<List>& ListSchema() {
+  static const OptionSchema<List> schema = OptionSchema<List>()
+                                               .Array("items", &List::items, InnerSchema(), "inner objects")
+                                               .Field("passed", &List::passed, "kept as given");
+  return schema;
+}
+
+std::string ListErrorOf(const nlohmann::json& j) {
+  return ConfigErrorOf([&] {
+    List l;
+    JsonReader r(j, "l.json");
+    ListSchema().Read(r, &l);
+  });
+}
+
+TEST(OptionSchema, ArraysOfObjectsAndObjectsKeptAsGiven) {
+  List l;
+  JsonReader r(nlohmann::json{{"items", {{{"rate", 0.25}}, nlohmann::json::object()}}, {"passed", {{"a", 1}}}}, "l.json");
+  ListSchema().Read(r, &l);
+  ASSERT_EQ(l.items.size(), 2u);
+  EXPECT_EQ(l.items[0].rate, 0.25);
+  EXPECT_EQ(l.items[1].rate, 0.5);  // absent: the default
+  EXPECT_EQ(l.passed, nlohmann::json({{"a", 1}}));
+  const nlohmann::json expected = {{"items", {{{"rate", 0.25}}, {{"rate", 0.5}}}}, {"passed", {{"a", 1}}}};
+  EXPECT_EQ(ListSchema().ToJson(l), expected);
+  EXPECT_EQ(ListErrorOf({{"items", {{{"rate", 0.25}}, {{"rate", 2.0}}}}}), "l.json: key 'items[1].rate': must be in (0, 1]");
+  EXPECT_EQ(ListErrorOf({{"items", {{{"rat", 0.25}}}}}), "l.json: key 'items[0].rat': unknown key");
+  EXPECT_EQ(ListErrorOf({{"items", {1}}}), "l.json: key 'items[0]': expected a JSON object, got number");
+  EXPECT_EQ(ListErrorOf({{"items", 1}}), "l.json: key 'items': expected an array of objects, got number");
+  EXPECT_EQ(ListErrorOf({{"passed", 1}}), "l.json: key 'passed': expected an object, got number");
+  std::vector<OptionDoc> docs;
+  ListSchema().List(List(), "", &docs);
+  ASSERT_EQ(docs.size(), 2u);
+  EXPECT_EQ(docs[0].key, "items[].rate");
 }
 
 TEST(NumberRange, ReasonsAndAllowedValues) {

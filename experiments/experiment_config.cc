@@ -1,10 +1,10 @@
 #include "experiments/experiment_config.h"
 
 #include <algorithm>
-#include <charconv>
+#include <cmath>
 #include <filesystem>
-#include <set>
 
+#include "common/csv.h"
 #include "common/json_reader.h"
 #include "common/options.h"
 #include "common/random.h"
@@ -15,8 +15,6 @@
 
 namespace slt {
 namespace {
-
-std::string Indexed(const std::string& key, size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
 bool IsScalar(const nlohmann::json& v) { return v.is_number() || v.is_string() || v.is_boolean(); }
 
@@ -32,18 +30,23 @@ bool IsScalar(const nlohmann::json& v) { return v.is_number() || v.is_string() |
   throw ConfigError(prefix + key + "': " + message + suffix);
 }
 
+const OptionSchema<MethodSpec>& MethodSchema() {
+  using M = MethodSpec;
+  static const OptionSchema<M> schema = OptionSchema<M>()
+                                            .Field("name", &M::name, {}, "registered tracker name")
+                                            .Field("label", &M::label, {}, "its id in every output (default: the name)")
+                                            .Field("options", &M::options, "tracker options (track --list-options)");
+  return schema;
+}
+
+// A tracker name, or {"name", "label", "options"}.
 MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const std::string& key) {
   MethodSpec method;
   if (j.is_string()) {
     method.name = j.get<std::string>();
   } else if (j.is_object()) {
     JsonReader reader(j, where, key);
-    reader.Get("name", &method.name);
-    reader.Get("label", &method.label);
-    if (const nlohmann::json* options = reader.Find("options")) {
-      if (!options->is_object()) reader.Fail("options", std::string("expected an object, got ") + options->type_name());
-      method.options = *options;
-    }
+    MethodSchema().ReadFields(reader, &method);
     reader.RejectUnknownKeys();
     if (method.name.empty()) reader.Fail("name", "missing: the registered tracker name");
   } else {
@@ -66,45 +69,53 @@ MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const s
 
 std::vector<MethodSpec> AllMethods() {
   std::vector<MethodSpec> methods;
-  for (const TrackerInfo& info : RegisteredTrackers()) {
-    if (info.plumbing_only) continue;
-    MethodSpec m;
-    m.name = info.name;
-    m.label = info.name;
-    methods.push_back(m);
-  }
+  for (const std::string& name : RegisteredTrackerNames(false)) methods.push_back({name, name});
   return methods;
 }
 
-std::vector<MethodSpec> ReadMethodList(JsonReader& reader, const std::string& key, bool allow_all) {
+// Appends the methods of `key`: an array, or (allow_all) "all" or absent for AllMethods().
+void ReadMethodList(JsonReader& reader, const std::string& key, bool allow_all, std::vector<MethodSpec>* methods) {
   const nlohmann::json* v = reader.Find(key);
-  if (v == nullptr) return allow_all ? AllMethods() : std::vector<MethodSpec>{};
-  if (allow_all && v->is_string() && v->get<std::string>() == "all") return AllMethods();
+  if (allow_all && (v == nullptr || (v->is_string() && v->get<std::string>() == "all"))) {
+    for (const MethodSpec& m : AllMethods()) methods->push_back(m);
+    return;
+  }
+  if (v == nullptr) return;
   if (!v->is_array()) reader.Fail(key, std::string(allow_all ? "expected \"all\" or " : "expected ") + "an array of methods");
-  std::vector<MethodSpec> methods;
-  for (size_t i = 0; i < v->size(); ++i) methods.push_back(ReadMethod((*v)[i], reader.where(), Indexed(reader.KeyPath(key), i)));
-  return methods;
+  for (size_t i = 0; i < v->size(); ++i) methods->push_back(ReadMethod((*v)[i], reader.where(), IndexedKey(reader.KeyPath(key), i)));
 }
 
-SweepAxis ReadAxis(const nlohmann::json& j, const std::string& where, const std::string& key) {
-  JsonReader reader(j, where, key);
-  SweepAxis axis;
-  reader.Get("parameter", &axis.parameter);
-  reader.Get("label", &axis.label);
-  const nlohmann::json* values = reader.Find("values");
-  reader.RejectUnknownKeys();
-  if (axis.parameter.empty()) reader.Fail("parameter", "missing: a dotted key of the simulation config");
-  if (axis.parameter == "seed") reader.Fail("parameter", "'seed' cannot be swept (trials set it; use the top-level 'seed' or 'trials')");
-  if (values == nullptr || !values->is_array() || values->empty()) reader.Fail("values", "expected a non-empty array");
-  for (size_t i = 0; i < values->size(); ++i) {
-    if (!IsScalar((*values)[i])) reader.Fail(Indexed("values", i), "expected a number, string or boolean");
-    for (size_t k = 0; k < i; ++k) {
-      if ((*values)[k] == (*values)[i]) reader.Fail(Indexed("values", i), "duplicate value " + (*values)[i].dump());
-    }
-    axis.values.push_back((*values)[i]);
-  }
-  if (axis.label.empty()) axis.label = axis.parameter;
-  return axis;
+const OptionSchema<SweepAxis>& AxisSchema() {
+  using A = SweepAxis;
+  static const OptionSchema<A> schema =
+      OptionSchema<A>()
+          .Field("parameter", &A::parameter, {}, "a dotted key of the simulation config")
+          .Custom(
+              "values",
+              [](JsonReader& r, A* a) {
+                const nlohmann::json* values = r.Find("values");
+                if (values == nullptr) return;  // Check: required
+                if (!values->is_array() || values->empty()) r.Fail("values", "expected a non-empty array");
+                for (size_t i = 0; i < values->size(); ++i) {
+                  if (!IsScalar((*values)[i])) r.Fail(IndexedKey("values", i), "expected a number, string or boolean");
+                  for (size_t k = 0; k < i; ++k) {
+                    if ((*values)[k] == (*values)[i]) r.Fail(IndexedKey("values", i), "duplicate value " + (*values)[i].dump());
+                  }
+                }
+                a->values = values->get<std::vector<nlohmann::json>>();
+              },
+              [](const A& a) { return nlohmann::json(a.values); }, "array of numbers, strings or booleans",
+              "the values, in the order of the tables and plots")
+          .Field("label", &A::label, {}, "axis label for plots and tables (default: the parameter)")
+          .OnRead([](A* a) {
+            if (a->label.empty()) a->label = a->parameter;
+          })
+          .Check("parameter", [](const A& a) { return a.parameter.empty() ? "missing: a dotted key of the simulation config" : ""; })
+          .Check("parameter", [](const A& a) {
+            return a.parameter == "seed" ? "'seed' cannot be swept (trials set it; use the top-level 'seed' or 'trials')" : "";
+          })
+          .Check("values", [](const A& a) { return a.values.empty() ? "expected a non-empty array" : ""; });
+  return schema;
 }
 
 const OptionSchema<ReportedValue>& ReportedValueSchema() {
@@ -116,32 +127,13 @@ const OptionSchema<ReportedValue>& ReportedValueSchema() {
           .Field("trans_err_m", &R::trans_err_m, AnyNumber(), "reported translation error, metres (< 0: not reported)")
           .Field("upper_bound", &R::upper_bound, "the paper says \"less than\" this value")
           .Field("label", &R::label, {}, "legend text")
+          .Check("x", [](const R& v) {
+            return std::isnan(v.x) ? "required: the value of the swept parameter (any number on a \"methods\" plot)" : "";
+          })
           .Check("rot_err_deg", [](const R& v) {
             return v.rot_err_deg < 0.0 && v.trans_err_m < 0.0 ? "give rot_err_deg, trans_err_m or both (>= 0)" : "";
           });
   return schema;
-}
-
-void ReadPaperValues(JsonReader& r, PlotSpec* p) {
-  const nlohmann::json* paper = r.Find("paper");
-  if (!paper) return;
-  if (!paper->is_array()) r.Fail("paper", "expected an array of {\"x\", \"rot_err_deg\", \"trans_err_m\"} objects");
-  p->paper.clear();
-  for (size_t i = 0; i < paper->size(); ++i) {
-    JsonReader value_reader((*paper)[i], r.where(), Indexed(r.KeyPath("paper"), i));
-    if (!value_reader.Find("x")) value_reader.Fail("x", "required: the value of the swept parameter (any number on a \"methods\" plot)");
-    ReportedValue value;
-    ReportedValueSchema().ReadFields(value_reader, &value);
-    value_reader.RejectUnknownKeys();
-    ReportedValueSchema().Validate(value, value_reader.where(), value_reader.path());
-    p->paper.push_back(value);
-  }
-}
-
-nlohmann::json PaperValuesToJson(const PlotSpec& p) {
-  nlohmann::json paper = nlohmann::json::array();
-  for (const ReportedValue& v : p.paper) paper.push_back(ReportedValueSchema().ToJson(v));
-  return paper;
 }
 
 const OptionSchema<PlotSpec>& PlotSchema() {
@@ -158,8 +150,8 @@ const OptionSchema<PlotSpec>& PlotSchema() {
                  "sweep, grid, curves: the statistic over trials drawn as lines (both: median solid, mean dotted)")
           .Field("lines", &P::lines, {"methods", "sweep"}, "grid: one line per method or per second value")
           .Field("trial", &P::trial, AtLeast(0), "trajectory: the trial drawn")
-          .Custom("paper", ReadPaperValues, PaperValuesToJson, "array of {x, rot_err_deg, trans_err_m, upper_bound, label}",
-                  "sweep: the paper's values drawn as black triangles; methods: as dashed lines")
+          .Array("paper", &P::paper, ReportedValueSchema(),
+                 "sweep: the paper's values drawn as black triangles; methods: as dashed lines")
           .Check("file", [](const P& p) {
             return p.file.size() < 5 || p.file.substr(p.file.size() - 4) != ".png" || p.file.find('/') != std::string::npos
                        ? "expected a file name ending in .png (no directory)"
@@ -168,38 +160,137 @@ const OptionSchema<PlotSpec>& PlotSchema() {
   return schema;
 }
 
-PlotSpec ReadPlot(const nlohmann::json& j, const std::string& where, const std::string& key) {
-  JsonReader reader(j, where, key);
-  PlotSpec plot;
-  PlotSchema().Read(reader, &plot);
-  reader.RejectUnknownKeys();
-  return plot;
+const OptionSchema<OrderingCheck>& OrderingSchema() {
+  using O = OrderingCheck;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>()
+          .Field("better", &O::better, {}, "id of the method with the lower errors")
+          .Field("worse", &O::worse, {}, "id of the method with the higher errors")
+          .Field("at", &O::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)");
+  return schema;
+}
+
+const OptionSchema<DatasetSpec>& DatasetSchema() {
+  using D = DatasetSpec;
+  static const OptionSchema<D> schema =
+      OptionSchema<D>()
+          .Field("path", &D::path, {}, "the sequence folder, relative to the working directory")
+          .Field("label", &D::label, {}, "its id in every output (default: the folder's name)")
+          .Field("layout", &D::layout, {}, "auto, asl (= euroc) or kitti")
+          .Field("first_frame", &D::first_frame, AtLeast(0), "first stereo pair run")
+          .Field("end_frame", &D::end_frame, AnyNumber(), "stereo pairs [first_frame, end_frame); -1 = to the end")
+          .Field("ground_truth", &D::ground_truth, {}, "overrides the dataset's own ground truth file (\"\" = its own)")
+          .OnRead([](D* d) {
+            const std::filesystem::path path = std::filesystem::path(d->path).lexically_normal();
+            if (d->label.empty()) d->label = path.filename().string();
+            if (d->label.empty()) d->label = path.parent_path().filename().string();
+          })
+          .Check("path", [](const D& d) { return d.path.empty() ? "missing: the sequence folder" : ""; })
+          .Check("layout",
+                 [](const D& d) {
+                   try {
+                     DatasetLayoutFromName(d.layout);
+                     return std::string();
+                   } catch (const std::invalid_argument& e) {
+                     return std::string(e.what());
+                   }
+                 })
+          .Check("end_frame", [](const D& d) {
+            return d.end_frame != -1 && d.end_frame <= d.first_frame ? "must be > first_frame, or -1 (to the end)" : "";
+          });
+  return schema;
+}
+
+// Every field of a config but the cross-field checks (ExperimentConfigFromJson).
+const OptionSchema<ExperimentConfig>& ExperimentSchema() {
+  using C = ExperimentConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("name", &C::name, {}, "output directory name: results/<name>")
+          .Field("title", &C::title, {}, "title of the tables and plots (default: the name)")
+          .Field("trials", &C::trials, AtLeast(1), "trials per method and sweep point")
+          .Field("seed", &C::seed, AnyNumber(), "trial k simulates with seed TrialSeed(seed, k)")
+          .Field("simulation", &C::simulation, "the base simulation (docs/simulation.md), without \"seed\"")
+          .Array("datasets", &C::datasets, DatasetSchema(), "recorded sequences instead of the simulation")
+          .Field("frontend", &C::frontend, "front-end options for \"datasets\" (docs/frontend.md)")
+          .Array("sweep", &C::sweep, AxisSchema(), "0, 1 or 2 swept parameters (2: every combination)")
+          .Custom(
+              "methods", [](JsonReader& r, C* c) { ReadMethodList(r, "methods", true, &c->methods); },
+              [](const C& c) {
+                nlohmann::json methods = nlohmann::json::array();
+                for (const MethodSpec& m : c.methods) methods.push_back(MethodSchema().ToJson(m));
+                return methods;
+              },
+              "\"all\" or array", "trackers: names or {name, label, options}; \"all\": every registered one")
+          .Custom(
+              "extra_methods", [](JsonReader& r, C* c) { ReadMethodList(r, "extra_methods", false, &c->methods); },
+              nullptr, "array", "appended to \"methods\" (read only)")
+          .Custom(
+              "metrics_frame",
+              [](JsonReader& r, C* c) {
+                const nlohmann::json* mf = r.Find("metrics_frame");
+                if (mf == nullptr || (mf->is_string() && mf->get<std::string>() == "last")) return;
+                if (!mf->is_number_integer() || mf->get<long long>() < 0 || mf->get<long long>() >= (1LL << 30)) {
+                  r.Fail("metrics_frame", "expected a frame index >= 0 or \"last\"");
+                }
+                c->metrics_frame = mf->get<int>();
+              },
+              [](const C& c) { return c.metrics_frame < 0 ? nlohmann::json("last") : nlohmann::json(c.metrics_frame); },
+              "\"last\" or >= 0", "frame at which the accumulated error is read")
+          .Field("per_frame_curves", &C::per_frame_curves, "write per-frame error curves (Fig. 6)")
+          .Field("save_trajectories", &C::save_trajectories, AtLeast(0), "trials 0 .. n-1 write TUM trajectories")
+          .Custom(
+              "table_metrics",
+              [](JsonReader& r, C* c) {
+                r.Get("table_metrics", &c->table_metrics);
+                for (size_t i = 0; i < c->table_metrics.size(); ++i) {
+                  std::string& metric = c->table_metrics[i];
+                  if (metric == "time_us") metric = TrialMetricName(kTimeMeanUs);
+                  if (TrialMetricFromName(metric) >= 0) continue;
+                  std::string known;
+                  for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
+                  r.Fail(IndexedKey("table_metrics", i), "unknown metric '" + metric + "' (known:" + known + ")");
+                }
+              },
+              [](const C& c) { return nlohmann::json(c.table_metrics); }, "metric names", "summary table columns")
+          .Array("plots", &C::plots, PlotSchema(), "PNGs drawn (default: follow the sweep and the flags)")
+          .Array("expect_better", &C::expect_better, OrderingSchema(), "expected orderings, as pairs")
+          .Check("name",
+                 [](const C& c) {
+                   return c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos || c.name[0] == '.'
+                              ? "expected a non-empty name without '/', '\\' or spaces (it names the output directory)"
+                              : "";
+                 })
+          .Check("sweep", [](const C& c) { return c.sweep.size() > 2 ? "at most 2 swept parameters" : ""; })
+          .Check("sweep[1].parameter",
+                 [](const C& c) {
+                   return c.sweep.size() == 2 && c.sweep[0].parameter == c.sweep[1].parameter ? "the same parameter as sweep[0]"
+                                                                                              : "";
+                 })
+          .Check("methods", [](const C& c) {
+            for (size_t i = 0; i < c.methods.size(); ++i) {
+              for (size_t k = 0; k < i; ++k) {
+                if (c.methods[k].label == c.methods[i].label) {
+                  return "two methods have the id '" + c.methods[i].label + "' (give the second a distinct \"label\")";
+                }
+              }
+            }
+            return c.methods.empty() ? std::string("no method to run") : std::string();
+          });
+  return schema;
 }
 
 std::vector<PlotSpec> DefaultPlots(const ExperimentConfig& c) {
   std::vector<PlotSpec> plots;
-  PlotSpec p;
-  if (c.sweep.size() == 1 && c.datasets.empty()) {  // datasets: categories, no sweep curve
-    p.kind = "sweep";
-    p.file = c.name + ".png";
-    plots.push_back(p);
-  } else if (c.sweep.size() == 2) {
-    p.kind = "grid";
-    p.file = c.name + ".png";
-    plots.push_back(p);
-  }
-  if (c.per_frame_curves) {
-    p = PlotSpec();
-    p.kind = "curves";
-    p.file = c.name + "_curves.png";
-    plots.push_back(p);
-  }
-  if (c.save_trajectories > 0) {
-    p = PlotSpec();
-    p.kind = "trajectory";
-    p.file = c.name + "_trajectory.png";
-    plots.push_back(p);
-  }
+  const auto add = [&](const char* kind, const std::string& file) {
+    plots.emplace_back();
+    plots.back().kind = kind;
+    plots.back().file = c.name + file;
+  };
+  if (c.sweep.size() == 1 && c.datasets.empty()) add("sweep", ".png");  // datasets: categories, no sweep curve
+  if (c.sweep.size() == 2) add("grid", ".png");
+  if (c.per_frame_curves) add("curves", "_curves.png");
+  if (c.save_trajectories > 0) add("trajectory", "_trajectory.png");
   return plots;
 }
 
@@ -218,6 +309,22 @@ void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::strin
   }
 }
 
+void CheckOrdering(const ExperimentConfig& c, const OrderingCheck& o, const std::string& where, const std::string& key) {
+  for (const char* side : {"better", "worse"}) {
+    const std::string& id = std::string(side) == "better" ? o.better : o.worse;
+    bool found = false;
+    for (const MethodSpec& m : c.methods) found = found || m.Id() == id;
+    if (!found) ThrowOptionError(where, key, side, "'" + id + "' is not the id of a method of this config");
+  }
+  for (const auto& [parameter, value] : o.at.items()) {
+    bool found = false;
+    for (const SweepAxis& a : c.sweep) {
+      found = found || (a.parameter == parameter && std::find(a.values.begin(), a.values.end(), value) != a.values.end());
+    }
+    if (!found) ThrowOptionError(where, key, "at", parameter + " = " + value.dump() + " is not a value of a swept parameter");
+  }
+}
+
 // Reads a simulation JSON; errors read "<where>: key 'simulation.<key>': <reason>" (with
 // " (at sweep point <at>)" appended when `at` is not empty).
 SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& where, const std::string& at) {
@@ -230,183 +337,60 @@ SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& w
   }
 }
 
-OrderingCheck ReadOrdering(const ExperimentConfig& c, const nlohmann::json& j, const std::string& where,
-                           const std::string& key) {
-  JsonReader reader(j, where, key);
-  OrderingCheck o;
-  reader.Get("better", &o.better).Get("worse", &o.worse);
-  if (const nlohmann::json* at = reader.Find("at")) o.at = *at;
-  reader.RejectUnknownKeys();
-  for (const char* side : {"better", "worse"}) {
-    const std::string& id = std::string(side) == "better" ? o.better : o.worse;
-    bool found = false;
-    for (const MethodSpec& m : c.methods) found = found || m.Id() == id;
-    if (!found) reader.Fail(side, "'" + id + "' is not the id of a method of this config");
-  }
-  if (!o.at.is_object()) reader.Fail("at", "expected an object {\"<swept parameter>\": value}");
-  for (const auto& [parameter, value] : o.at.items()) {
-    bool found = false;
-    for (const SweepAxis& a : c.sweep) {
-      found = found || (a.parameter == parameter && std::find(a.values.begin(), a.values.end(), value) != a.values.end());
+// The checks of a run on recorded sequences; their labels become the one sweep axis "dataset".
+void UseDatasetsAsSweep(JsonReader& reader, ExperimentConfig* c) {
+  if (c->datasets.empty()) reader.Fail("datasets", "expected a non-empty array of {\"path\", ...}");
+  for (size_t i = 0; i < c->datasets.size(); ++i) {
+    for (size_t k = 0; k < i; ++k) {
+      if (c->datasets[k].label == c->datasets[i].label) {
+        ThrowOptionError(reader.where(), IndexedKey("datasets", i), "label", "'" + c->datasets[i].label + "' used twice");
+      }
     }
-    if (!found) reader.Fail("at", parameter + " = " + value.dump() + " is not a value of a swept parameter");
   }
-  return o;
-}
-
-nlohmann::json ToJson(const MethodSpec& m) {
-  return {{"name", m.name}, {"label", m.label}, {"options", m.options}};
-}
-
-nlohmann::json ToJson(const SweepAxis& a) {
-  return {{"parameter", a.parameter}, {"values", a.values}, {"label", a.label}};
-}
-
-DatasetSpec ReadDataset(const nlohmann::json& j, const std::string& where, const std::string& key) {
-  if (!j.is_object()) ThrowOptionError(where, "", key, std::string("expected {\"path\": ..}, got ") + j.type_name());
-  JsonReader reader(j, where, key);
-  DatasetSpec d;
-  reader.Get("path", &d.path).Get("label", &d.label).Get("layout", &d.layout);
-  reader.Get("first_frame", &d.first_frame).Get("end_frame", &d.end_frame).Get("ground_truth", &d.ground_truth);
-  reader.RejectUnknownKeys();
-  if (d.path.empty()) reader.Fail("path", "missing: the sequence folder");
-  try {
-    DatasetLayoutFromName(d.layout);
-  } catch (const std::invalid_argument& e) {
-    reader.Fail("layout", e.what());
+  if (reader.Has("simulation")) reader.Fail("simulation", "not with \"datasets\" (a run is on recorded or on simulated data)");
+  if (c->trials != 1) reader.Fail("trials", "must be 1 with \"datasets\" (a recorded sequence has no random draws)");
+  SweepAxis axis;
+  axis.parameter = axis.label = "dataset";
+  for (const DatasetSpec& d : c->datasets) axis.values.push_back(d.label);
+  // config.json writes this axis (for the plots); reading it back, it must be just that.
+  const auto as_json = [](const SweepAxis& a) { return AxisSchema().ToJson(a); };
+  if (reader.Has("sweep") && (c->sweep.size() != 1 || as_json(c->sweep[0]) != as_json(axis))) {
+    reader.Fail("sweep", "not with \"datasets\" (the datasets are the sweep)");
   }
-  if (d.first_frame < 0) reader.Fail("first_frame", "must be >= 0");
-  if (d.end_frame != -1 && d.end_frame <= d.first_frame) reader.Fail("end_frame", "must be > first_frame, or -1 (to the end)");
-  if (d.label.empty()) d.label = std::filesystem::path(d.path).lexically_normal().filename().string();
-  if (d.label.empty()) d.label = std::filesystem::path(d.path).lexically_normal().parent_path().filename().string();
-  return d;
+  c->sweep = {axis};
 }
-
-nlohmann::json ToJson(const DatasetSpec& d) {
-  return {{"path", d.path},         {"label", d.label},         {"layout", d.layout},
-          {"first_frame", d.first_frame}, {"end_frame", d.end_frame}, {"ground_truth", d.ground_truth}};
-}
-
-nlohmann::json ToJson(const OrderingCheck& o) { return {{"better", o.better}, {"worse", o.worse}, {"at", o.at}}; }
-
-nlohmann::json ToJson(const PlotSpec& p) { return PlotSchema().ToJson(p); }
 
 }  // namespace
 
 ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::string& where) {
   JsonReader reader(j, where);
   ExperimentConfig c;
-  reader.Get("name", &c.name).Get("title", &c.title).Get("trials", &c.trials).Get("seed", &c.seed);
-  if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos || c.name[0] == '.') {
-    reader.Fail("name", "expected a non-empty name without '/', '\\' or spaces (it names the output directory)");
-  }
+  ExperimentSchema().ReadFields(reader, &c);
+  reader.Find("resolved");  // output only (ResolvedConfigJson): ignored on input
+  reader.RejectUnknownKeys();
+  ExperimentSchema().Validate(c, where, "");
   if (c.title.empty()) c.title = c.name;
-  if (c.trials < 1) reader.Fail("trials", "must be >= 1");
-
-  if (const nlohmann::json* sim = reader.Find("simulation")) {
-    if (!sim->is_object()) reader.Fail("simulation", std::string("expected an object, got ") + sim->type_name());
-    c.simulation = *sim;
-  }
-  if (const nlohmann::json* datasets = reader.Find("datasets")) {
-    if (!datasets->is_array() || datasets->empty()) reader.Fail("datasets", "expected a non-empty array of {\"path\", ...}");
-    for (size_t i = 0; i < datasets->size(); ++i) c.datasets.push_back(ReadDataset((*datasets)[i], where, Indexed("datasets", i)));
-    for (size_t i = 0; i < c.datasets.size(); ++i) {
-      for (size_t k = 0; k < i; ++k) {
-        if (c.datasets[k].label == c.datasets[i].label) {
-          ThrowOptionError(where, Indexed("datasets", i), "label", "'" + c.datasets[i].label + "' used twice");
-        }
-      }
-    }
-    if (reader.Has("simulation")) reader.Fail("simulation", "not with \"datasets\" (a run is on recorded or on simulated data)");
-    if (c.trials != 1) reader.Fail("trials", "must be 1 with \"datasets\" (a recorded sequence has no random draws)");
-    SweepAxis axis;
-    axis.parameter = axis.label = "dataset";
-    for (const DatasetSpec& d : c.datasets) axis.values.push_back(d.label);
-    c.sweep.push_back(axis);
-    // config.json writes this axis (for the plots); reading it back, it must be just that.
-    if (const nlohmann::json* sweep = reader.Find("sweep")) {
-      if (*sweep != nlohmann::json::array({ToJson(axis)})) {
-        reader.Fail("sweep", "not with \"datasets\" (the datasets are the sweep)");
-      }
-    }
-  }
-  if (const nlohmann::json* frontend = reader.Find("frontend")) {
-    if (!frontend->is_object()) reader.Fail("frontend", std::string("expected an object, got ") + frontend->type_name());
-    c.frontend = *frontend;
-    try {
-      FrontEndOptionsFromJson(c.frontend, where);
-    } catch (const ConfigError& e) {
-      // "frontend: key 'x': reason" -> "<where>: key 'frontend.x': reason".
-      RethrowUnder(e, where, "frontend", "");
-    }
+  c.save_trajectories = std::min(c.save_trajectories, c.trials);
+  if (reader.Has("datasets")) UseDatasetsAsSweep(reader, &c);
+  try {
+    FrontEndOptionsFromJson(c.frontend, where);
+  } catch (const ConfigError& e) {
+    RethrowUnder(e, where, "frontend");  // "<where>: key 'frontend.x': reason"
   }
   if (c.simulation.contains("seed")) {
     ThrowOptionError(where, "simulation", "seed", "set by the experiment (trial k uses TrialSeed(seed, k)); use the top-level 'seed'");
   }
   ParseSimulation(c.simulation, where, "");
 
-  if (const nlohmann::json* sweep = c.datasets.empty() ? reader.Find("sweep") : nullptr) {
-    if (!sweep->is_array()) reader.Fail("sweep", "expected an array of {\"parameter\", \"values\"}");
-    if (sweep->size() > 2) reader.Fail("sweep", "at most 2 swept parameters");
-    for (size_t i = 0; i < sweep->size(); ++i) c.sweep.push_back(ReadAxis((*sweep)[i], where, Indexed("sweep", i)));
-    if (c.sweep.size() == 2 && c.sweep[0].parameter == c.sweep[1].parameter) {
-      reader.Fail("sweep[1].parameter", "the same parameter as sweep[0]");
-    }
-  }
-
-  c.methods = ReadMethodList(reader, "methods", true);
-  for (MethodSpec& m : ReadMethodList(reader, "extra_methods", false)) c.methods.push_back(m);
-  if (c.methods.empty()) reader.Fail("methods", "no method to run");
-  for (size_t i = 0; i < c.methods.size(); ++i) {
-    for (size_t k = 0; k < i; ++k) {
-      if (c.methods[k].label == c.methods[i].label) {
-        reader.Fail("methods", "two methods have the id '" + c.methods[i].label +
-                                   "' (give the second a distinct \"label\")");
-      }
-    }
-  }
-
-  if (const nlohmann::json* mf = reader.Find("metrics_frame")) {
-    if (mf->is_string() && mf->get<std::string>() == "last") {
-      c.metrics_frame = -1;
-    } else if (mf->is_number_integer() && mf->get<long long>() >= 0 && mf->get<long long>() < (1LL << 30)) {
-      c.metrics_frame = mf->get<int>();
-    } else {
-      reader.Fail("metrics_frame", "expected a frame index >= 0 or \"last\"");
-    }
-  }
-  reader.Get("per_frame_curves", &c.per_frame_curves).Get("save_trajectories", &c.save_trajectories);
-  if (c.save_trajectories < 0) reader.Fail("save_trajectories", "must be >= 0");
-  c.save_trajectories = std::min(c.save_trajectories, c.trials);
-  reader.Get("table_metrics", &c.table_metrics);
-  for (size_t i = 0; i < c.table_metrics.size(); ++i) {
-    if (c.table_metrics[i] == "time_us") c.table_metrics[i] = TrialMetricName(kTimeMeanUs);
-    if (TrialMetricFromName(c.table_metrics[i]) < 0) {
-      std::string known;
-      for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
-      reader.Fail(Indexed("table_metrics", i), "unknown metric '" + c.table_metrics[i] + "' (known:" + known + ")");
-    }
-  }
-
-  if (const nlohmann::json* plots = reader.Find("plots")) {
-    if (!plots->is_array()) reader.Fail("plots", "expected an array of plot objects");
-    for (size_t i = 0; i < plots->size(); ++i) c.plots.push_back(ReadPlot((*plots)[i], where, Indexed("plots", i)));
-  } else {
-    c.plots = DefaultPlots(c);
-  }
+  if (!reader.Has("plots")) c.plots = DefaultPlots(c);
   for (size_t i = 0; i < c.plots.size(); ++i) {
-    CheckPlot(c, c.plots[i], where, Indexed("plots", i));
+    CheckPlot(c, c.plots[i], where, IndexedKey("plots", i));
     if (c.plots[i].title.empty()) c.plots[i].title = c.title;
     for (size_t k = 0; k < i; ++k) {
-      if (c.plots[k].file == c.plots[i].file) ThrowOptionError(where, Indexed("plots", i), "file", "used twice");
+      if (c.plots[k].file == c.plots[i].file) ThrowOptionError(where, IndexedKey("plots", i), "file", "used twice");
     }
   }
-  if (const nlohmann::json* pairs = reader.Find("expect_better")) {
-    if (!pairs->is_array()) reader.Fail("expect_better", "expected an array of {\"better\", \"worse\", \"at\"}");
-    for (size_t i = 0; i < pairs->size(); ++i) c.expect_better.push_back(ReadOrdering(c, (*pairs)[i], where, Indexed("expect_better", i)));
-  }
-  reader.Find("resolved");  // output only (ResolvedConfigJson): ignored on input
-  reader.RejectUnknownKeys();
+  for (size_t i = 0; i < c.expect_better.size(); ++i) CheckOrdering(c, c.expect_better[i], where, IndexedKey("expect_better", i));
 
   if (!c.datasets.empty()) {
     // Frame counts are known when the datasets are opened; errors are read at the last frame.
@@ -414,19 +398,16 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
     return c;
   }
   // Every sweep point must give a valid simulation, and the metrics frame must exist in it.
-  const std::vector<SweepPoint> points = ExpandSweep(c.sweep);
-  for (const SweepPoint& point : points) {
+  for (const SweepPoint& point : ExpandSweep(c.sweep)) {
     nlohmann::json sim = c.simulation;
     for (size_t a = 0; a < c.sweep.size(); ++a) {
       try {
         SetDottedKey(&sim, c.sweep[a].parameter, point.values[a]);
       } catch (const std::invalid_argument& e) {
-        ThrowOptionError(where, Indexed("sweep", a), "parameter", e.what());
+        ThrowOptionError(where, IndexedKey("sweep", a), "parameter", e.what());
       }
     }
-    std::string at;
-    for (size_t a = 0; a < c.sweep.size(); ++a) at += (a ? ", " : "") + c.sweep[a].parameter + " = " + FormatValue(point.values[a]);
-    const SimulationConfig config = ParseSimulation(sim, where, at);
+    const SimulationConfig config = ParseSimulation(sim, where, c.sweep.empty() ? "" : PointText(c, point));
     if (c.metrics_frame >= config.frames) {
       reader.Fail("metrics_frame", "frame " + std::to_string(c.metrics_frame) + " does not exist in a sequence of " +
                                        std::to_string(config.frames) + " frames (frames count from 0)");
@@ -440,34 +421,14 @@ ExperimentConfig ReadExperimentConfig(const std::string& path) {
 }
 
 nlohmann::json ExperimentConfigToJson(const ExperimentConfig& c) {
-  nlohmann::json j;
-  j["name"] = c.name;
-  j["title"] = c.title;
-  j["trials"] = c.trials;
-  j["seed"] = c.seed;
-  const auto array_of = [](const auto& items) {
-    nlohmann::json array = nlohmann::json::array();
-    for (const auto& item : items) array.push_back(ToJson(item));
-    return array;
-  };
+  nlohmann::json j = ExperimentSchema().ToJson(c);
+  // A run is on simulated or on recorded data: the other's keys are left out.
   if (c.datasets.empty()) {
-    j["simulation"] = c.simulation;
+    j.erase("datasets");
+    j.erase("frontend");
   } else {
-    j["datasets"] = array_of(c.datasets);
-    j["frontend"] = c.frontend;
+    j.erase("simulation");
   }
-  j["sweep"] = array_of(c.sweep);
-  j["methods"] = array_of(c.methods);
-  if (c.metrics_frame < 0) {
-    j["metrics_frame"] = "last";
-  } else {
-    j["metrics_frame"] = c.metrics_frame;
-  }
-  j["per_frame_curves"] = c.per_frame_curves;
-  j["save_trajectories"] = c.save_trajectories;
-  j["table_metrics"] = c.table_metrics;
-  j["plots"] = array_of(c.plots);
-  j["expect_better"] = array_of(c.expect_better);
   return j;
 }
 
@@ -490,7 +451,7 @@ nlohmann::json ResolvedConfigJson(const ExperimentConfig& c) {
     nlohmann::json values = nlohmann::json::object();
     for (size_t a = 0; a < c.sweep.size(); ++a) values[c.sweep[a].parameter] = points[p].values[a];
     if (!c.datasets.empty()) {
-      resolved["points"].push_back({{"point", p}, {"values", values}, {"dataset", ToJson(c.datasets[p])}});
+      resolved["points"].push_back({{"point", p}, {"values", values}, {"dataset", DatasetSchema().ToJson(c.datasets[p])}});
       continue;
     }
     nlohmann::json sim = SimulationConfigToJson(TrialSimulation(c, points[p], 0));
@@ -545,18 +506,22 @@ SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoin
   return s;
 }
 
+std::string PointText(const ExperimentConfig& config, const SweepPoint& point) {
+  if (config.sweep.empty()) return "(no sweep)";
+  std::string s;
+  for (size_t a = 0; a < config.sweep.size(); ++a) {
+    s += (a ? ", " : "") + config.sweep[a].parameter + " = " + FormatValue(point.values[a]);
+  }
+  return s;
+}
+
 int MetricsFrameFor(const ExperimentConfig& config, int frames) {
   return config.metrics_frame < 0 ? frames - 1 : config.metrics_frame;
 }
 
 std::string FormatValue(const nlohmann::json& value) {
   if (value.is_string()) return value.get<std::string>();
-  if (value.is_number_float()) {
-    char buffer[64];
-    const auto r = std::to_chars(buffer, buffer + sizeof(buffer), value.get<double>());
-    return std::string(buffer, r.ptr);
-  }
-  return value.dump();
+  return value.is_number_float() ? FormatDouble(value.get<double>()) : value.dump();
 }
 
 }  // namespace slt

@@ -1,11 +1,14 @@
 // The experiment config: which simulated sequences, which trackers, how many trials, which
 // sweep, which plots. docs/experiments.md lists every field.
 //
-// Every field has a default. Errors are ConfigError "<file>: key '<dotted.key>': <reason>".
-// ExperimentConfigToJson writes every field with its default filled in, in a form that
-// ExperimentConfigFromJson reads back to the same config (config.resolved.json).
+// Every field has a default and is declared once, with its range and doc, in the config's option
+// schema (experiment_config.cc, common/options.h): reading, checking and writing derive from it.
+// Errors are ConfigError "<file>: key '<dotted.key>': <reason>". ExperimentConfigToJson writes
+// every field with its default filled in, in a form that ExperimentConfigFromJson reads back to
+// the same config (config.resolved.json).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -33,7 +36,7 @@ struct MethodSpec {
 
 // A value the paper reports, drawn on a sweep plot beside the reproduction (Figs. 4, 5).
 struct ReportedValue {
-  double x = 0.0;                 // where on the swept parameter
+  double x = std::nan("");        // where on the swept parameter (required)
   double rot_err_deg = -1.0;      // < 0: not reported
   double trans_err_m = -1.0;
   bool upper_bound = true;        // the paper says "less than" this value
@@ -136,6 +139,9 @@ void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const n
 // does not depend on the point or the method: every sweep value and every method of trial k
 // sees the same scene, motion and noise draws.
 SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoint& point, int trial);
+
+// "noise.endpoint_px = 1, outliers.rate = 0.1" ("(no sweep)" without a sweep).
+std::string PointText(const ExperimentConfig& config, const SweepPoint& point);
 
 // The frame at which errors are read for a sequence of `frames` frames.
 int MetricsFrameFor(const ExperimentConfig& config, int frames);

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "common/json_reader.h"
 #include "common/random.h"
+#include "common/script_runner.h"
+#include "experiments/experiment_driver.h"
 #include "methods/pose_tracker.h"
 
 namespace slt {
@@ -255,6 +259,38 @@ TEST(ExperimentConfig, DatasetErrorsNameTheKey) {
             "cfg.json: key 'metrics_frame': must be \"last\" with \"datasets\"");
   EXPECT_NE(ErrorOf({{"trials", 1}, {"datasets", one}, {"frontend", {{"detektion", 1}}}}).find("cfg.json: key 'frontend.detektion'"),
             std::string::npos);
+}
+
+// The configs users have written keep loading, and every committed config.resolved.json reads
+// back to the same values (its "resolved" section aside): the schema writes what the hand-written
+// writer wrote.
+TEST(ExperimentConfig, EveryConfigLoadsAndEveryCommittedResolvedConfigRoundTrips) {
+  const std::vector<std::string> configs = AvailableConfigs();
+  ASSERT_FALSE(configs.empty());
+  for (const std::string& name : configs) {
+    EXPECT_NO_THROW(ReadExperimentConfig(FindConfigFile(name))) << name;
+  }
+  int resolved_files = 0;
+  for (const char* folder : {"results", "results/reference"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(SourceDir() + "/" + folder)) {
+      const std::string path = (entry.path() / "config.resolved.json").string();
+      if (!std::filesystem::exists(path)) continue;
+      json written = ReadJsonFile(path);
+      written.erase("resolved");
+      const json rewritten = ExperimentConfigToJson(ExperimentConfigFromJson(written, path));
+      // Plot fields added since a result was made are written with their defaults; the rest is
+      // the same, and the rewrite reads back to itself.
+      for (const auto& [key, value] : written.items()) {
+        if (key != "plots") {
+          EXPECT_EQ(rewritten[key], value) << path << " " << key;
+        }
+      }
+      EXPECT_EQ(rewritten.size(), written.size()) << path;
+      EXPECT_EQ(ExperimentConfigToJson(ExperimentConfigFromJson(rewritten, path)), rewritten) << path;
+      ++resolved_files;
+    }
+  }
+  EXPECT_GT(resolved_files, 10);
 }
 
 }  // namespace

@@ -1,9 +1,6 @@
 #include "experiments/experiment_driver.h"
 
 #include <algorithm>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <stdexcept>
@@ -17,15 +14,6 @@ namespace slt {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string Join(const std::string& dir, const std::string& file) { return (fs::path(dir) / file).string(); }
-
-
-void MakeDirectory(const std::string& dir) {
-  std::error_code error;
-  fs::create_directories(dir, error);
-  if (error) throw std::runtime_error(dir + ": cannot create directory (" + error.message() + ")");
-}
 
 // An out_dir that exists must be a directory: the swap would replace a file (a config given as
 // --out) with the results.
@@ -41,23 +29,13 @@ void CheckOutputDir(const std::string& out_dir) {
 // new directory.
 void SwapIntoPlace(const std::string& staging, const std::string& out_dir) {
   std::error_code error;
-  if (fs::exists(out_dir, error)) {
-    const fs::path shards = fs::path(out_dir) / "raw" / "shards";
-    if (fs::exists(shards, error)) {
-      MakeDirectory(Join(staging, "raw"));
-      fs::rename(shards, fs::path(staging) / "raw" / "shards", error);
-      if (error) throw std::runtime_error(shards.string() + ": cannot move into " + staging + " (" + error.message() + ")");
-    }
-    const std::string old = out_dir + ".old." + std::to_string(::getpid());
-    fs::rename(out_dir, old, error);
-    if (error) throw std::runtime_error(out_dir + ": cannot move aside (" + error.message() + "); the new results are in " + staging);
-    fs::rename(staging, out_dir, error);
-    if (error) throw std::runtime_error(staging + ": cannot move to " + out_dir + " (" + error.message() + ")");
-    fs::remove_all(old, error);
-  } else {
-    fs::rename(staging, out_dir, error);
-    if (error) throw std::runtime_error(staging + ": cannot move to " + out_dir + " (" + error.message() + ")");
+  const fs::path shards = fs::path(out_dir) / "raw" / "shards";
+  if (fs::exists(shards, error)) {
+    CreateDirectories(JoinPath(staging, "raw"));
+    fs::rename(shards, fs::path(staging) / "raw" / "shards", error);
+    if (error) throw std::runtime_error(shards.string() + ": cannot move into " + staging + " (" + error.message() + ")");
   }
+  ReplaceDirectory(staging, out_dir);
 }
 
 // Writes raw/, config.resolved.json, the summaries (a whole run) and run.json last into `dir`,
@@ -65,9 +43,9 @@ void SwapIntoPlace(const std::string& staging, const std::string& out_dir) {
 void WriteOutputs(const std::string& dir, const DriverOptions& options, const ExperimentConfig& config,
                   const std::vector<TrialResult>& trials, const nlohmann::json& resolved, const nlohmann::json& info,
                   std::chrono::steady_clock::time_point start) {
-  MakeDirectory(dir);
+  CreateDirectories(dir);
   WriteRawResults(dir, config, trials);
-  WriteJsonFile(Join(dir, "config.resolved.json"), resolved);
+  WriteJsonFile(JoinPath(dir, "config.resolved.json"), resolved);
   if (options.run.shard.IsWhole()) WriteSummaries(dir, config, trials);
   nlohmann::json run = VersionAndMachineJson(SourceDir());
   run["program"] = "run_experiment";
@@ -75,7 +53,7 @@ void WriteOutputs(const std::string& dir, const DriverOptions& options, const Ex
   run["config_file"] = options.config_file;
   run.update(info);
   run["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteJsonFile(Join(dir, "run.json"), run);
+  WriteJsonFile(JoinPath(dir, "run.json"), run);
 }
 
 // The finished jobs of an earlier run of `resolved`, for --resume: the journal in the staging
@@ -85,13 +63,13 @@ std::vector<TrialResult> CompletedJobs(const std::string& out_dir, const Experim
                                        const nlohmann::json& resolved) {
   std::error_code error;
   for (const std::string& dir : {StagingDir(out_dir), out_dir}) {
-    const std::string config_path = Join(dir, "config.resolved.json");
+    const std::string config_path = JoinPath(dir, "config.resolved.json");
     if (!fs::exists(config_path, error)) continue;
     if (ReadJsonFile(config_path) != resolved) {
       throw std::runtime_error("--resume: " + config_path +
                                " is another config's (run without --resume to start afresh)");
     }
-    if (!fs::exists(Join(dir, "raw/trials.csv"), error)) continue;
+    if (!fs::exists(JoinPath(dir, "raw/trials.csv"), error)) continue;
     return ReadRawResults(dir, config);
   }
   return {};
@@ -133,8 +111,8 @@ ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& o
   if (options.resume) run_options.completed = CompletedJobs(options.out_dir, config, resolved);
   std::error_code error;
   fs::remove_all(staging, error);
-  MakeDirectory(staging);
-  WriteJsonFile(Join(staging, "config.resolved.json"), resolved);
+  CreateDirectories(staging);
+  WriteJsonFile(JoinPath(staging, "config.resolved.json"), resolved);
   Journal journal(staging, config, run_options.completed);
   run_options.on_trial = [&journal](const TrialResult& trial) { journal.Add(trial); };
   ExperimentRun run = RunExperiment(config, run_options);
@@ -188,25 +166,19 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
   return merged;
 }
 
-std::string StagingDir(const std::string& out_dir) {
-  std::string dir = fs::path(out_dir).lexically_normal().string();
-  while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
-  return dir + ".partial";
-}
-
 std::string DefaultOutputDir(const std::string& name) {
   std::error_code error;
-  if (fs::is_directory(SourceDir(), error)) return Join(Join(SourceDir(), "results"), name);
-  return Join("results", name);
+  if (fs::is_directory(SourceDir(), error)) return JoinPath(JoinPath(SourceDir(), "results"), name);
+  return JoinPath("results", name);
 }
 
 std::string FindConfigFile(const std::string& name) {
   std::vector<std::string> candidates = {name};
   const bool has_suffix = name.size() > 5 && name.substr(name.size() - 5) == ".json";
   if (!has_suffix) candidates.push_back(name + ".json");
-  for (const std::string& base : {std::string("experiments/configs"), Join(SourceDir(), "experiments/configs")}) {
-    candidates.push_back(Join(base, name));
-    if (!has_suffix) candidates.push_back(Join(base, name + ".json"));
+  for (const std::string& base : {std::string("experiments/configs"), JoinPath(SourceDir(), "experiments/configs")}) {
+    candidates.push_back(JoinPath(base, name));
+    if (!has_suffix) candidates.push_back(JoinPath(base, name + ".json"));
   }
   std::error_code error;
   for (const std::string& c : candidates) {

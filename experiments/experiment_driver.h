@@ -21,10 +21,9 @@ struct DriverOptions {
   std::vector<std::string> command_line;  // recorded in run.json
 };
 
-// Where a run is written before it replaces out_dir: "<out_dir>.partial". While the jobs run it
-// holds config.resolved.json and a journal of the finished jobs (raw/, rewritten every few
-// seconds), which an interrupted run leaves behind for --resume.
-std::string StagingDir(const std::string& out_dir);
+// A run is written into StagingDir(out_dir) (common/file_io.h) before it replaces out_dir. While
+// the jobs run it holds config.resolved.json and a journal of the finished jobs (raw/,
+// rewritten every few seconds), which an interrupted run leaves behind for --resume.
 
 // Runs the experiment (or the shard), then writes raw/, config.resolved.json, and, for a whole
 // run, the summaries; run.json last. Everything is written into StagingDir(out_dir), which then

@@ -61,8 +61,6 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
 
-std::string Join(const std::string& dir, const std::string& file) { return (fs::path(dir) / file).string(); }
-
 // The columns that name a row: method id, point index, the point's sweep values.
 std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t method,
                                    size_t point) {
@@ -74,7 +72,7 @@ std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::ve
 // Their header, then `columns`.
 std::vector<std::string> Header(const ExperimentConfig& config, std::initializer_list<const char*> columns) {
   std::vector<std::string> header = {"method", "point"};
-  for (const SweepAxis& a : config.sweep) header.push_back(a.parameter);
+  for (const std::string& c : SweepColumns(config)) header.push_back(c);
   header.insert(header.end(), columns.begin(), columns.end());
   return header;
 }
@@ -174,7 +172,7 @@ std::vector<std::string> SweepColumns(const ExperimentConfig& config) {
 
 void WriteRawResults(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  fs::create_directories(Join(dir, "raw"));
+  CreateDirectories(JoinPath(dir, "raw"));
 
   std::vector<std::string> header = Header(config, {"trial", "seed", "n_frames", "metrics_frame"});
   for (int m = 0; m < kNumTrialMetrics; ++m) header.push_back(TrialMetricName(m));
@@ -183,7 +181,7 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
   std::string curves = CsvLine(Header(config, {"trial", "frame", "time_s", "rot_err_deg", "trans_err_m"}));
   std::string index = CsvLine(Header(config, {"trial", "estimate", "ground_truth"}));
   bool any_curve = false, any_trajectory = false;
-  const std::string tdir = Join(dir, "raw/trajectories");
+  const std::string tdir = JoinPath(dir, "raw/trajectories");
   fs::remove_all(tdir);  // this program's own folder: no stale files from an earlier run
   for (const TrialResult& t : trials) {
     std::vector<std::string> prefix = RowPrefix(config, points, t.method_index, t.point_index);
@@ -205,20 +203,20 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
       any_curve = true;
     }
     if (t.estimate.empty()) continue;
-    if (!any_trajectory) fs::create_directories(tdir);
+    if (!any_trajectory) CreateDirectories(tdir);
     any_trajectory = true;
     const std::string tag = "p" + std::to_string(t.point_index) + "_t" + std::to_string(t.trial);
     const std::string est_file = "m" + std::to_string(t.method_index) + "_" + tag + ".tum";
     const std::string gt_file = "gt_" + tag + ".tum";
-    WriteTumTrajectory(Join(tdir, est_file), t.estimate);
-    WriteTumTrajectory(Join(tdir, gt_file), t.ground_truth);
+    WriteTumTrajectory(JoinPath(tdir, est_file), t.estimate);
+    WriteTumTrajectory(JoinPath(tdir, gt_file), t.ground_truth);
     prefix.push_back(est_file);
     prefix.push_back(gt_file);
     index += CsvLine(prefix);
   }
-  WriteTextFileAtomically(Join(dir, "raw/trials.csv"), csv);
-  if (any_curve) WriteTextFileAtomically(Join(dir, "raw/curves.csv"), curves);
-  if (any_trajectory) WriteTextFileAtomically(Join(tdir, "index.csv"), index);
+  WriteTextFileAtomically(JoinPath(dir, "raw/trials.csv"), csv);
+  if (any_curve) WriteTextFileAtomically(JoinPath(dir, "raw/curves.csv"), curves);
+  if (any_trajectory) WriteTextFileAtomically(JoinPath(tdir, "index.csv"), index);
 }
 
 std::vector<TrialResult> ReadRawResults(const std::string& dir, const ExperimentConfig& config) {
@@ -229,7 +227,7 @@ std::vector<TrialResult> ReadRawResults(const std::string& dir, const Experiment
   // and line; `trial` is the parsed (method, point, trial) of the row, and for the files other
   // than trials.csv, the trial it belongs to.
   auto for_each_row = [&](const std::string& file, bool first, const auto& read) {
-    const std::string path = Join(dir, file);
+    const std::string path = JoinPath(dir, file);
     if (!first && !fs::exists(path)) return;
     const CsvTable table = ReadCsvFile(path);
     for (size_t r = 0; r < table.rows.size(); ++r) {
@@ -277,8 +275,8 @@ std::vector<TrialResult> ReadRawResults(const std::string& dir, const Experiment
     t.curve.push_back(e);
   });
   for_each_row("raw/trajectories/index.csv", false, [&](const auto& column, TrialResult& t, const std::string&) {
-    t.estimate = ReadTumTrajectory(Join(dir, "raw/trajectories/" + column("estimate")));
-    t.ground_truth = ReadTumTrajectory(Join(dir, "raw/trajectories/" + column("ground_truth")));
+    t.estimate = ReadTumTrajectory(JoinPath(dir, "raw/trajectories/" + column("estimate")));
+    t.ground_truth = ReadTumTrajectory(JoinPath(dir, "raw/trajectories/" + column("ground_truth")));
   });
   return trials;
 }
@@ -428,15 +426,6 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
   return csv;
 }
 
-std::string PointText(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t point) {
-  if (config.sweep.empty()) return "(no sweep)";
-  std::string s;
-  for (size_t a = 0; a < config.sweep.size(); ++a) {
-    s += (a ? ", " : "") + config.sweep[a].parameter + " = " + FormatValue(points[point].values[a]);
-  }
-  return s;
-}
-
 std::string OrderingText(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   std::map<size_t, std::vector<const SummaryRow*>> by_point;
@@ -446,7 +435,7 @@ std::string OrderingText(const ExperimentConfig& config, const std::vector<Summa
     std::stable_sort(group.begin(), group.end(), [](const SummaryRow* a, const SummaryRow* b) {
       return a->metrics[kRotErrDeg].mean < b->metrics[kRotErrDeg].mean;
     });
-    text += "- " + PointText(config, points, point) + ":";
+    text += "- " + PointText(config, points[point]) + ":";
     for (size_t i = 0; i < group.size(); ++i) {
       text += std::string(i ? " <" : "") + " " + config.methods.at(group[i]->method).Id() + " (" +
               Sig(group[i]->metrics[kRotErrDeg].mean) + " deg)";
@@ -457,12 +446,12 @@ std::string OrderingText(const ExperimentConfig& config, const std::vector<Summa
 }
 
 void WriteSummaries(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
-  fs::create_directories(dir);
+  CreateDirectories(dir);
   const std::vector<SummaryRow> rows = SummarizeTrials(config, trials);
-  WriteTextFileAtomically(Join(dir, "summary.csv"), SummaryCsv(config, rows));
-  WriteTextFileAtomically(Join(dir, "summary.md"), SummaryMarkdown(config, rows));
-  WriteTextFileAtomically(Join(dir, "summary.tex"), SummaryLatex(config, rows));
-  if (config.per_frame_curves) WriteTextFileAtomically(Join(dir, "curves.csv"), CurvesCsv(config, trials));
+  WriteTextFileAtomically(JoinPath(dir, "summary.csv"), SummaryCsv(config, rows));
+  WriteTextFileAtomically(JoinPath(dir, "summary.md"), SummaryMarkdown(config, rows));
+  WriteTextFileAtomically(JoinPath(dir, "summary.tex"), SummaryLatex(config, rows));
+  if (config.per_frame_curves) WriteTextFileAtomically(JoinPath(dir, "curves.csv"), CurvesCsv(config, trials));
 }
 
 MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
@@ -470,7 +459,7 @@ MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
   MergedRun merged;
   nlohmann::json first_config;
   for (size_t d = 0; d < dirs.size(); ++d) {
-    const std::string config_path = Join(dirs[d], "config.resolved.json");
+    const std::string config_path = JoinPath(dirs[d], "config.resolved.json");
     const nlohmann::json j = ReadJsonFile(config_path);
     ExperimentConfig config = ExperimentConfigFromJson(j, config_path);
     const nlohmann::json canonical = ExperimentConfigToJson(config);
@@ -478,10 +467,10 @@ MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
       merged.config = config;
       first_config = canonical;
     } else if (canonical != first_config) {
-      throw std::runtime_error(config_path + ": the config differs from " + Join(dirs[0], "config.resolved.json") +
+      throw std::runtime_error(config_path + ": the config differs from " + JoinPath(dirs[0], "config.resolved.json") +
                                " (shards of different experiments?)");
     }
-    const std::string run_path = Join(dirs[d], "run.json");
+    const std::string run_path = JoinPath(dirs[d], "run.json");
     nlohmann::json run = fs::exists(run_path) ? ReadJsonFile(run_path) : nlohmann::json::object();
     run["directory"] = dirs[d];
     merged.shards.push_back(run);
@@ -489,22 +478,17 @@ MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
   }
   // Every job exactly once.
   const std::vector<Job> jobs = ExperimentJobs(merged.config);
-  const size_t points = ExpandSweep(merged.config.sweep).size();
+  const std::vector<SweepPoint> points = ExpandSweep(merged.config.sweep);
   auto job_index = [&](const TrialResult& t) {
-    return JobIndex(points, merged.config.trials, t.method_index, t.point_index, t.trial);
+    return JobIndex(points.size(), merged.config.trials, t.method_index, t.point_index, t.trial);
   };
   std::vector<int> seen(jobs.size(), 0);
   for (const TrialResult& t : merged.trials) ++seen.at(job_index(t));
-  const std::vector<SweepPoint> sweep_points = ExpandSweep(merged.config.sweep);
   for (const Job& job : jobs) {
-    if (seen[job.index] == 0) {
-      throw std::runtime_error("--merge: job " + std::to_string(job.index) + " (" +
-                               DescribeJob(merged.config, sweep_points, job) + ") is in none of the directories (a shard missing?)");
-    }
-    if (seen[job.index] > 1) {
-      throw std::runtime_error("--merge: job " + std::to_string(job.index) + " (" +
-                               DescribeJob(merged.config, sweep_points, job) + ") appears in more than one directory");
-    }
+    if (seen[job.index] == 1) continue;
+    throw std::runtime_error("--merge: job " + std::to_string(job.index) + " (" + DescribeJob(merged.config, points, job) +
+                             (seen[job.index] == 0 ? ") is in none of the directories (a shard missing?)"
+                                                   : ") appears in more than one directory"));
   }
   std::sort(merged.trials.begin(), merged.trials.end(),
             [&](const TrialResult& a, const TrialResult& b) { return job_index(a) < job_index(b); });

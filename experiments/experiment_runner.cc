@@ -1,14 +1,14 @@
 #include "experiments/experiment_runner.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+
+#include "common/parallel.h"
 
 #include "common/random.h"
 #include "evaluation/consistency.h"
@@ -67,9 +67,7 @@ Shard ParseShard(const std::string& text) {
 
 std::string DescribeJob(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
   std::string s = "method '" + config.methods[job.method].Id() + "'";
-  for (size_t a = 0; a < config.sweep.size(); ++a) {
-    s += ", " + config.sweep[a].parameter + " = " + FormatValue(points[job.point].values[a]);
-  }
+  if (!config.sweep.empty()) s += ", " + PointText(config, points[job.point]);
   s += ", trial " + std::to_string(job.trial) + " (simulation seed " +
        std::to_string(TrialSeed(config.seed, static_cast<std::uint64_t>(job.trial))) + ")";
   return s;
@@ -261,40 +259,22 @@ ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& op
     }
   }
 
-  std::atomic<size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;  // guards done, error and the callbacks
-  size_t done = jobs.size() - to_run.size();
-  std::string error;
-  auto worker = [&]() {
-    while (!stop.load()) {
-      const size_t n = next.fetch_add(1);
-      if (n >= to_run.size()) return;
-      const size_t i = to_run[n];
-      try {
-        run.trials[i] = RunTrial(config, points, jobs[i]);
-      } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (error.empty()) error = DescribeJob(config, points, jobs[i]) + ": " + e.what();
-        stop.store(true);
-        return;
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
-      if (options.on_trial) options.on_trial(run.trials[i]);
-      if (options.on_progress) options.on_progress(done, jobs.size());
-    }
-  };
   threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, to_run.size()))));
   run.threads = threads;
-  if (threads == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
-  }
-  if (!error.empty()) throw std::runtime_error(error);
+  std::mutex mutex;  // guards done and the callbacks
+  size_t done = jobs.size() - to_run.size();
+  ParallelFor(to_run.size(), threads, [&](size_t n) {
+    const size_t i = to_run[n];
+    try {
+      run.trials[i] = RunTrial(config, points, jobs[i]);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(DescribeJob(config, points, jobs[i]) + ": " + e.what());
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    ++done;
+    if (options.on_trial) options.on_trial(run.trials[i]);
+    if (options.on_progress) options.on_progress(done, jobs.size());
+  });
   run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }

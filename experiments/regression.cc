@@ -51,11 +51,8 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
   }
   std::set<std::string> current_ids;
   for (const MethodSpec& m : config.methods) current_ids.insert(m.Id());
-  const std::set<std::string> registered = [] {
-    std::set<std::string> names;
-    for (const TrackerInfo& info : RegisteredTrackers()) names.insert(info.name);
-    return names;
-  }();
+  const std::vector<std::string> registered_names = RegisteredTrackerNames();
+  const std::set<std::string> registered(registered_names.begin(), registered_names.end());
   for (const auto& [id, name] : reference_methods) {
     if (!registered.count(name)) {
       report.failures.push_back("reference method '" + id + "' (tracker '" + name +
@@ -97,7 +94,7 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
     std::vector<std::string> values;
     for (const nlohmann::json& v : points.at(row.point).values) values.push_back(FormatValue(v));
     const auto it = by_key.find({id, values});
-    const std::string at = "'" + id + "' at " + PointText(config, points, row.point);
+    const std::string at = "'" + id + "' at " + PointText(config, points.at(row.point));
     if (it == by_key.end()) {
       report.failures.push_back(at + ": no reference row (the sweep changed? regenerate with scripts/update_references.sh)");
       continue;
@@ -147,7 +144,7 @@ RegressionReport CheckOrderings(const ExperimentConfig& config, const std::vecto
         selected = selected && (it == pair.at.end() || *it == points[p].values[a]);
       }
       if (!selected) continue;
-      const std::string at = PointText(config, points, p);
+      const std::string at = PointText(config, points[p]);
       const SummaryRow* better = row_of(pair.better, p);
       const SummaryRow* worse = row_of(pair.worse, p);
       if (better == nullptr || worse == nullptr) {

@@ -69,6 +69,25 @@ const OptionSchema<TrackingOptions>& TrackingOptionsSchema() {
   return schema;
 }
 
+const EnumNames<FlowSeed>& FlowSeedNames() {
+  static const EnumNames<FlowSeed> names = {
+      {FlowSeed::kNone, "none"}, {FlowSeed::kImage, "image"}, {FlowSeed::kPrediction, "prediction"}};
+  return names;
+}
+
+const OptionSchema<MotionOptions>& MotionOptionsSchema() {
+  using M = MotionOptions;
+  static const OptionSchema<M> schema =
+      OptionSchema<M>()
+          .Field("seed", &M::seed, FlowSeedNames(), "where the flow starts: previous position, last image motion, or predicted camera motion")
+          .Field("unpredicted_pyramid_levels", &M::unpredicted_pyramid_levels, InRange(0, 8), "pyramid levels for lines without a predicted camera motion")
+          .Field("rematch_below_fraction", &M::rematch_below_fraction, InRange(0.0, 1.0), "re-match lost lines by MSLD when fewer survive the flow (0 = off)")
+          .Field("rematch_distance_px", &M::rematch_distance_px, Positive(), "re-matching: largest distance to the predicted line, px")
+          .Field("rematch_angle_deg", &M::rematch_angle_deg, InRange(0.0, 90.0, "(]"), "re-matching: largest angle to the predicted line, deg")
+          .Field("unpredicted_gate_scale", &M::unpredicted_gate_scale, AtLeast(1.0), "re-matching: distance gate factor without a camera prediction");
+  return schema;
+}
+
 const OptionSchema<FrontEndOptions>& FrontEndOptionsSchema() {
   using F = FrontEndOptions;
   static const OptionSchema<F> schema =
@@ -76,6 +95,7 @@ const OptionSchema<FrontEndOptions>& FrontEndOptionsSchema() {
           .Child("detection", &F::detection, DetectionOptionsSchema(), "line detection")
           .Child("matching", &F::matching, MatchingOptionsSchema(), "stereo matching")
           .Child("tracking", &F::tracking, TrackingOptionsSchema(), "temporal tracking")
+          .Child("motion", &F::motion, MotionOptionsSchema(), "large motion: flow seeds, pyramid depth, re-matching")
           .Field("max_new_lines", &F::max_new_lines, AtLeast(0), "pairs added per detection, longest first (0 = all)")
           .Field("duplicate_angle_deg", &F::duplicate_angle_deg, InRange(0.0, 45.0), "a new pair within this angle of a tracked line ...")
           .Field("duplicate_distance_px", &F::duplicate_distance_px, AtLeast(0.0), "... and this distance duplicates it, px");

@@ -1,7 +1,8 @@
 // Options of the image front end (docs/frontend.md): line detection, stereo matching and
 // temporal tracking. Every field has a default; the JSON keys, ranges and one-line docs are
 // declared once in FrontEndOptionsSchema() (frontend_options.cc). A `--config frontend.json`
-// holds {"detection": {...}, "matching": {...}, "tracking": {...}}, each key optional.
+// holds {"detection": {...}, "matching": {...}, "tracking": {...}, "motion": {...}}, each key
+// optional.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -105,10 +106,42 @@ struct TrackingOptions {
   double min_stereo_overlap = 0.3;
 };
 
+// Where the optical flow of a live line starts its search in the next pair (large motion,
+// issue 19; docs/datasets.md measures each step on KITTI).
+enum class FlowSeed {
+  kNone,        // at the line's previous position (plain pyramidal LK)
+  kImage,       // moved as in the last frame (the line's last two positions)
+  kPrediction,  // moved as the tracker's predicted camera motion moves its 3-D line (the stereo
+                // pair's triangulation); a line the pair cannot place (within
+                // matching.epipolar_angle_deg of the epipolar direction, or not in front of the
+                // cameras) or a pair without a prediction falls back to kImage
+};
+
+struct MotionOptions {
+  FlowSeed seed = FlowSeed::kPrediction;
+  // Pyramid levels above the image when a line's seed is not a predicted camera motion (the
+  // first frames, a tracker without a prediction, lines the pair cannot place): the search
+  // must reach further. tracking.pyramid_levels applies to predicted lines.
+  int unpredicted_pyramid_levels = 3;
+  // Descriptor re-matching: when fewer than this fraction of the live lines survive the flow,
+  // the pair's lines are detected and stereo-matched, and each lost line is looked for among
+  // them by MSLD near its predicted position (frame_matching.h); found, it keeps its id
+  // (0 = off).
+  double rematch_below_fraction = 0.5;
+  // A candidate lies within rematch_distance_px of the predicted segment's line (both
+  // endpoints) and rematch_angle_deg of its direction, overlaps it along the line, and its MSLD
+  // distance is at most matching.max_msld_distance and passes matching.msld_ratio. Without a
+  // camera prediction the distance gate is unpredicted_gate_scale times wider.
+  double rematch_distance_px = 10.0;
+  double rematch_angle_deg = 5.0;
+  double unpredicted_gate_scale = 4.0;
+};
+
 struct FrontEndOptions {
   DetectionOptions detection;
   MatchingOptions matching;
   TrackingOptions tracking;
+  MotionOptions motion;
   // Detected pairs added per detection, the longest first (0 = all).
   int max_new_lines = 0;
   // A new pair is not added when it duplicates a line already tracked: left segments within
@@ -120,6 +153,8 @@ struct FrontEndOptions {
 const OptionSchema<DetectionOptions>& DetectionOptionsSchema();
 const OptionSchema<MatchingOptions>& MatchingOptionsSchema();
 const OptionSchema<TrackingOptions>& TrackingOptionsSchema();
+const OptionSchema<MotionOptions>& MotionOptionsSchema();
+const EnumNames<FlowSeed>& FlowSeedNames();
 const OptionSchema<FrontEndOptions>& FrontEndOptionsSchema();
 const EnumNames<LineDetectorType>& LineDetectorNames();
 

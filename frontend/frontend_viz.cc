@@ -8,8 +8,10 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "common/file_io.h"
 #include "common/json_reader.h"
 #include "frontend/line_detection.h"
+#include "frontend/line_motion.h"
 
 namespace slt {
 namespace fs = std::filesystem;
@@ -27,15 +29,13 @@ void DrawSegment(cv::Mat* image, const Segment2d& s, const cv::Scalar& colour, i
   cv::line(*image, cv::Point2d(s[0], s[1]), cv::Point2d(s[2], s[3]), colour, thickness, cv::LINE_AA);
 }
 
-// The part of the infinite pixel line l inside the image, as a segment (false when none).
-bool LineInImage(const Eigen::Vector3d& l, int width, int height, Segment2d* segment) {
-  const Eigen::Vector2d n = l.head<2>();
-  if (n.norm() < 1e-12) return false;
-  const Eigen::Vector2d p0 = -l.z() * n / n.squaredNorm(), d(-n.y(), n.x());
-  const double big = 4.0 * (width + height);
-  Segment2d s;
-  s << (p0 - big * d.normalized()), (p0 + big * d.normalized());
-  return ClipSegmentToImage(width, height, &s) && (*segment = s, true);
+// The segment between two world points seen by a camera (false when one is behind it).
+bool ProjectSegment(const Rigid3d& cam_from_world, const PinholeCamera& camera,
+                    const std::pair<Eigen::Vector3d, Eigen::Vector3d>& ends, Segment2d* segment) {
+  const Eigen::Vector3d a = cam_from_world * ends.first, b = cam_from_world * ends.second;
+  if (!(a.z() > 1e-3) || !(b.z() > 1e-3)) return false;
+  *segment << camera.Project(a), camera.Project(b);
+  return segment->allFinite();
 }
 
 void Save(const std::string& path, const cv::Mat& image) {
@@ -51,9 +51,9 @@ cv::Mat SideBySide(const cv::Mat& left, const cv::Mat& right) {
 }  // namespace
 
 FrontEndPictures::FrontEndPictures(const std::string& dir, const StereoRig& rig, int frames)
-    : dir_(dir), partial_(dir + ".partial"), rig_(rig), frames_(frames) {
+    : dir_(dir), partial_(StagingDir(dir)), rig_(rig), frames_(frames) {
   fs::remove_all(partial_);
-  fs::create_directories(partial_);
+  CreateDirectories(partial_);
 }
 
 void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right, const StereoFrontEnd& front_end,
@@ -69,6 +69,10 @@ void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right
       const Eigen::Vector3d rl = NormalizedLineFromPixelLine(rig_.right, LineFromSegment(frame.right[i].segment));
       if (front_end.matcher().geometry().EpipolarSine(frame.left[i].segment) < std::sin(5.0 * M_PI / 180.0)) continue;
       reference_[frame.left[i].id] = StereoPairLine(rig_.right_from_left, ll, rl);
+      Eigen::Vector3d a, b;
+      if (StereoSegmentEndpoints(rig_, frame.left[i].segment, frame.right[i].segment, &a, &b)) {
+        reference_endpoints_[frame.left[i].id] = {a, b};
+      }
     }
   }
   // Re-project the reference lines still tracked; angles against the tracked segments.
@@ -95,8 +99,13 @@ void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right
       sum += std::acos(std::min(1.0, std::abs(d.dot(e)))) * 180.0 / M_PI;
       ++count;
       if (picture) {
+        const auto ends = reference_endpoints_.find(frame.left[i].id);
         Segment2d s;
-        if (LineInImage(pixel_line, rig_.width, rig_.height, &s)) DrawSegment(&images[c], s, kReprojected);
+        if (ends != reference_endpoints_.end() &&
+            ProjectSegment(c == 0 ? left_from_world : right_from_world, camera, ends->second, &s) &&
+            ClipSegmentToImage(rig_.width, rig_.height, &s)) {
+          DrawSegment(&images[c], s, kReprojected);
+        }
         DrawSegment(&images[c], tracked, kTracked, 2);
       }
     }
@@ -122,8 +131,7 @@ void FrontEndPictures::Finish() {
   WriteTextFileAtomically(partial_ + "/reprojection_error.csv", csv);
   WriteCurvePng(partial_ + "/reprojection_error.png", x, y,
                 "Re-projection error of the first pair's lines (Fig. 9)", "frame", "mean angle, deg");
-  fs::remove_all(dir_);
-  fs::rename(partial_, dir_);
+  ReplaceDirectory(partial_, dir_);
 }
 
 void WriteCurvePng(const std::string& path, const std::vector<double>& x, const std::vector<double>& y,

@@ -1,14 +1,16 @@
 // The pictures of track_images --viz, after the paper's Figs. 7-9 (Sec. 5.2: the recovered
 // motion checked by re-projecting the reference lines):
 //   detections_first_pair.png   the lines detected in the first stereo pair (Fig. 7 top);
-//   reprojection_NNNNNN.png     at a third, two thirds and the end of the run: the lines of the
-//                               first pair, triangulated from it and re-projected with the
-//                               recovered motion (magenta, infinite lines), next to the same
-//                               lines as tracked (green) (Figs. 7-8);
+//   reprojection_NNNNNN.png     at a third, two thirds and the end of the run: the segments of
+//                               the first pair, their endpoints placed on the 3-D line the
+//                               pair triangulates (line_motion.h) and re-projected with the
+//                               recovered motion (magenta), next to the same lines as tracked
+//                               (green) (Figs. 7-8);
 //   reprojection_error.png/.csv the mean angle between tracked and re-projected lines against
 //                               frame, both images (Fig. 9).
 // Lines within 5 deg of the epipolar direction are not triangulated (their stereo pair does
-// not define them). Everything is written into DIR.partial and renamed to DIR by Finish().
+// not define them). Everything is written into StagingDir(DIR) and replaces DIR in Finish()
+// (ReplaceDirectory, common/file_io.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -41,6 +43,8 @@ class FrontEndPictures {
   StereoRig rig_;
   int frames_;
   std::map<std::int64_t, PlueckerLine> reference_;  // in the world = left camera at the first frame
+  // The first pair's left endpoints on those lines, in the world (lines with both in front).
+  std::map<std::int64_t, std::pair<Eigen::Vector3d, Eigen::Vector3d>> reference_endpoints_;
   struct Point {
     int frame;
     double angle_deg;

@@ -11,10 +11,24 @@ ImageTracker::ImageTracker(StereoFrontEnd& front_end, PoseTracker& tracker, cons
 
 ImageTrackingStep ImageTracker::Step(const cv::Mat& left, const cv::Mat& right, double time) {
   ImageTrackingStep step;
-  step.frame = &front_end_.Process(left, right, time, tracker_.WantsNewFeatures());
+  step.frame = &front_end_.Process(left, right, time, tracker_.WantsNewFeatures(), next_motion_);
   const auto t0 = std::chrono::steady_clock::now();
   step.output = tracker_.Track(*step.frame);
   step.tracker_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const Rigid3d& pose = step.output.cam_from_world;
+  const bool measured = step.output.status != TrackingStatus::kLost;
+  next_motion_.reset();
+  if (const std::optional<Rigid3d> predicted = tracker_.PredictNext()) {
+    next_motion_ = *predicted * pose.Inverse();
+  } else if (measured && last_measured_) {
+    next_motion_ = pose * last_measured_->Inverse();
+  }
+  if (measured) {
+    last_measured_ = pose;
+  } else {
+    last_measured_.reset();
+  }
   return step;
 }
 

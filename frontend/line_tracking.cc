@@ -182,15 +182,13 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
 LineFlowTracker::LineFlowTracker(const TrackingOptions& options, std::uint64_t seed)
     : options_(options), ransac_(seed) {}
 
-void LineFlowTracker::BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid) const {
+void LineFlowTracker::BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid, int levels) const {
   cv::buildOpticalFlowPyramid(grey, *pyramid, cv::Size(options_.window_px, options_.window_px),
-                              options_.pyramid_levels, true);
+                              std::max(options_.pyramid_levels, levels), true);
 }
 
-void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& next,
-                           const std::vector<Segment2d>& segments) {
+void LineFlowTracker::SamplePoints(const std::vector<Segment2d>& segments) {
   segments_ = segments;
-  derivatives_ = next.size() > 1 ? next[1] : cv::Mat();
   first_point_.assign(1, 0);
   points_.clear();
   for (const Segment2d& s : segments) {
@@ -203,13 +201,46 @@ void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& nex
     }
     first_point_.push_back(static_cast<int>(points_.size()));
   }
-  tracked_points_.clear();
-  status_.clear();
-  if (points_.empty()) return;
+}
+
+void LineFlowTracker::RunLucasKanade(const ImagePyramid& previous, const ImagePyramid& next, int levels, int flags) {
+  derivatives_ = next.size() > 1 ? next[1] : cv::Mat();
+  if (points_.empty()) {
+    tracked_points_.clear();
+    status_.clear();
+    return;
+  }
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, options_.max_iterations,
                                   options_.epsilon_px);
   cv::calcOpticalFlowPyrLK(previous, next, points_, tracked_points_, status_, error_,
-                           cv::Size(options_.window_px, options_.window_px), options_.pyramid_levels, criteria);
+                           cv::Size(options_.window_px, options_.window_px), levels, criteria, flags);
+}
+
+void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& next,
+                           const std::vector<Segment2d>& segments) {
+  SamplePoints(segments);
+  tracked_points_.clear();
+  status_.clear();
+  RunLucasKanade(previous, next, options_.pyramid_levels, 0);
+}
+
+void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& next,
+                           const std::vector<Segment2d>& segments, const std::vector<Eigen::Matrix3d>& point_maps,
+                           int levels) {
+  SamplePoints(segments);
+  // The image size, from the pyramid's first level (which holds the image inside a border).
+  const cv::Size size = next.empty() ? cv::Size() : next[0].size();
+  tracked_points_.resize(points_.size());
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const Eigen::Matrix3d& h = point_maps[s];
+    for (int p = first_point_[s]; p < first_point_[s + 1]; ++p) {
+      const Eigen::Vector3d q = h * Eigen::Vector3d(points_[p].x, points_[p].y, 1.0);
+      const double u = q.x() / q.z(), v = q.y() / q.z();
+      const bool inside = q.z() > 0.0 && u >= 0.0 && v >= 0.0 && u <= size.width - 1.0 && v <= size.height - 1.0;
+      tracked_points_[p] = inside ? cv::Point2f(static_cast<float>(u), static_cast<float>(v)) : points_[p];
+    }
+  }
+  RunLucasKanade(previous, next, levels, cv::OPTFLOW_USE_INITIAL_FLOW);
 }
 
 LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old, int sampled,

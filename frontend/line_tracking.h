@@ -68,10 +68,18 @@ class LineFlowTracker {
  public:
   explicit LineFlowTracker(const TrackingOptions& options, std::uint64_t seed = 1);
 
-  // The pyramid (with derivatives) that Flow() takes, built once per image.
-  void BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid) const;
+  // The pyramid (with derivatives) that Flow() takes, built once per image, with
+  // options.pyramid_levels levels above the image, or `levels` when more.
+  void BuildPyramid(const cv::Mat& grey, ImagePyramid* pyramid, int levels = 0) const;
   // Stage 1: tracks the sample points of `segments` from `previous` into `next`.
   void Flow(const ImagePyramid& previous, const ImagePyramid& next, const std::vector<Segment2d>& segments);
+  // The same, seeded (large motion, issue 19): each point p of segment i starts its search at
+  // H_i p (homogeneous; `point_maps[i]` = H_i, a homography from the previous image to the next
+  // one, e.g. the motion a predicted camera motion gives to the segment's 3-D line) instead of
+  // at p, and the search uses the pyramid's levels 0 .. `levels` (at most those built). A seed
+  // that is not finite or falls outside the image starts at p.
+  void Flow(const ImagePyramid& previous, const ImagePyramid& next, const std::vector<Segment2d>& segments,
+            const std::vector<Eigen::Matrix3d>& point_maps, int levels);
   // Stage 2: the refitted (and snapped) segments (ok[i] = 0 when segment i is lost), for the
   // segments of the last Flow() call, in an image of the given size.
   void Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok);
@@ -93,6 +101,10 @@ class LineFlowTracker {
   std::vector<double> positions_;
   SnapWorkspace snap_;
   double last_mean_rms_ = 0.0;
+
+  // Samples the points of `segments` into points_ and first_point_.
+  void SamplePoints(const std::vector<Segment2d>& segments);
+  void RunLucasKanade(const ImagePyramid& previous, const ImagePyramid& next, int levels, int flags);
 };
 
 }  // namespace slt

@@ -7,11 +7,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "frontend/line_motion.h"
+
 namespace slt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Back-projected planes closer than this (sine of their angle) are numerically one plane. Far
+// lines have nearly coincident planes too, but there the depth matters little to the
+// prediction; lines near the epipolar direction are excluded by the image angle instead.
+constexpr double kMinPlaneSine = 1e-6;
 
 }  // namespace
 
@@ -23,7 +30,7 @@ StereoFrontEnd::StereoFrontEnd(const FrontEndOptions& options, const StereoRig& 
       flow_{LineFlowTracker(options.tracking, 1), LineFlowTracker(options.tracking, 2)} {}
 
 const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& right, double time,
-                                           bool detect_new_lines) {
+                                           bool detect_new_lines, const std::optional<Rigid3d>& predicted_motion) {
   for (const cv::Mat* image : {&left, &right}) {
     if (image->type() != CV_8UC1 || image->cols != rig_.width || image->rows != rig_.height) {
       throw std::invalid_argument("front end: expected 8-bit grey images of " + std::to_string(rig_.width) + " x " +
@@ -34,11 +41,17 @@ const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& r
   }
   stats_ = FrontEndFrameStats();
   const Clock::time_point t0 = Clock::now();
-  flow_[0].BuildPyramid(left, &current_[0]);
-  flow_[1].BuildPyramid(right, &current_[1]);
+  const int levels = options_.motion.unpredicted_pyramid_levels;
+  flow_[0].BuildPyramid(left, &current_[0], levels);
+  flow_[1].BuildPyramid(right, &current_[1], levels);
   stats_.times.track += Since(t0);
-  if (started_) Track(left, right);
-  if (detect_new_lines || !started_) Detect(left, right);
+  lost_.clear();
+  if (started_) Track(predicted_motion);
+  const int before = static_cast<int>(stats_.tracked + stats_.lost);
+  stats_.rematch = started_ && before > 0 && stats_.tracked < options_.motion.rematch_below_fraction * before;
+  if (detect_new_lines || !started_ || stats_.rematch) DetectAndMatch(left, right);
+  if (stats_.rematch) Rematch();
+  if (detect_new_lines || !started_) AddNewLines();
   started_ = true;
   std::swap(previous_[0], current_[0]);
   std::swap(previous_[1], current_[1]);
@@ -54,33 +67,90 @@ const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& r
   return frame_;
 }
 
-void StereoFrontEnd::Track(const cv::Mat& left, const cv::Mat& right) {
-  (void)left;
-  (void)right;
+void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
   const int n = static_cast<int>(live_.size());
+  Clock::time_point t0 = Clock::now();
+  // Seeds: the predicted camera motion through the line's 3-D line; else the line's last image
+  // motion; else (a new line the pair cannot place) the predicted motion of a fronto-parallel
+  // plane at the median depth of the placed lines, or nothing.
+  const MotionOptions& motion = options_.motion;
+  const bool use_camera = motion.seed == FlowSeed::kPrediction && predicted_motion.has_value();
+  const double epipolar_sine = std::sin(options_.matching.epipolar_angle_deg * M_PI / 180.0);
+  const StereoGeometry& geometry = matcher_.geometry();
+  from_prediction_.assign(n, 0);
+  depths_.clear();
   for (int c = 0; c < 2; ++c) {
     segments_[c].resize(n);
-    for (int i = 0; i < n; ++i) segments_[c][i] = c == 0 ? live_[i].left : live_[i].right;
+    maps_[c].assign(n, Eigen::Matrix3d::Identity());
   }
-  Clock::time_point t0 = Clock::now();
-  for (int c = 0; c < 2; ++c) flow_[c].Flow(previous_[c], current_[c], segments_[c]);
+  int unplaced = 0;
+  for (int i = 0; i < n; ++i) {
+    const LiveLine& line = live_[i];
+    segments_[0][i] = line.left;
+    segments_[1][i] = line.right;
+    StereoLineMaps maps;
+    double depth = 0.0;
+    // A line near the epipolar direction has no depth from the pair (its two back-projected
+    // planes nearly coincide).
+    if (use_camera && geometry.EpipolarSine(line.left) >= epipolar_sine &&
+        PredictStereoLineMotion(rig_, *predicted_motion, line.left, line.right, kMinPlaneSine, &maps, &depth)) {
+      from_prediction_[i] = 1;
+      depths_.push_back(depth);
+    } else if (motion.seed != FlowSeed::kNone && line.has_shift) {
+      maps.left = TranslationMap(line.shift[0]);
+      maps.right = TranslationMap(line.shift[1]);
+    } else {
+      ++unplaced;
+      continue;
+    }
+    maps_[0][i] = maps.left;
+    maps_[1][i] = maps.right;
+  }
+  if (use_camera && unplaced > 0) {
+    StereoLineMaps scene = RotationOnlyMaps(rig_, *predicted_motion);
+    if (!depths_.empty()) {
+      std::nth_element(depths_.begin(), depths_.begin() + depths_.size() / 2, depths_.end());
+      scene = FrontoParallelMaps(rig_, *predicted_motion, depths_[depths_.size() / 2]);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (from_prediction_[i] || (motion.seed != FlowSeed::kNone && live_[i].has_shift)) continue;
+      maps_[0][i] = scene.left;
+      maps_[1][i] = scene.right;
+    }
+  }
+  const int levels = use_camera ? options_.tracking.pyramid_levels : motion.unpredicted_pyramid_levels;
+  for (int c = 0; c < 2; ++c) flow_[c].Flow(previous_[c], current_[c], segments_[c], maps_[c], levels);
   stats_.times.track += Since(t0);
 
   t0 = Clock::now();
   for (int c = 0; c < 2; ++c) flow_[c].Refit(rig_.width, rig_.height, &tracked_[c], &ok_[c]);
-  const StereoGeometry& geometry = matcher_.geometry();
-  const double epipolar_sine = std::sin(options_.matching.epipolar_angle_deg * M_PI / 180.0);
   int kept = 0;
   for (int i = 0; i < n; ++i) {
-    if (!ok_[0][i] || !ok_[1][i]) continue;  // lost in one image: dropped in both
     const Segment2d& l = tracked_[0][i];
     const Segment2d& r = tracked_[1][i];
-    if (geometry.BeamOverlap(l, r, epipolar_sine, options_.matching.epipolar_distance_px) <
-            options_.tracking.min_stereo_overlap ||
-        !geometry.DisparityInRange(l, r, options_.matching.min_disparity_px, options_.matching.max_disparity_px)) {
+    const bool consistent =
+        ok_[0][i] && ok_[1][i] &&  // lost in one image: dropped in both
+        geometry.BeamOverlap(l, r, epipolar_sine, options_.matching.epipolar_distance_px) >=
+            options_.tracking.min_stereo_overlap &&
+        geometry.DisparityInRange(l, r, options_.matching.min_disparity_px, options_.matching.max_disparity_px);
+    if (!consistent) {
+      if (motion.rematch_below_fraction > 0.0) {
+        LostLine lost{live_[i], {live_[i].left, live_[i].right}, from_prediction_[i] != 0};
+        for (int c = 0; c < 2; ++c) {
+          Segment2d mapped;
+          if (MapSegment(maps_[c][i], segments_[c][i], &mapped)) lost.predicted[c] = mapped;
+        }
+        lost_.push_back(lost);
+      }
       continue;
     }
-    live_[kept] = {live_[i].id, l, r};
+    LiveLine& out = live_[kept];
+    const LiveLine before = live_[i];
+    out = {before.id, l, r};
+    out.shift[0] = 0.5 * (l.head<2>() + l.tail<2>() - before.left.head<2>() - before.left.tail<2>());
+    out.shift[1] = 0.5 * (r.head<2>() + r.tail<2>() - before.right.head<2>() - before.right.tail<2>());
+    out.has_shift = true;
+    stats_.predicted += from_prediction_[i];
     ++kept;
   }
   stats_.tracked = kept;
@@ -108,7 +178,7 @@ bool StereoFrontEnd::DuplicatesLiveLine(const Segment2d& left) const {
   return false;
 }
 
-void StereoFrontEnd::Detect(const cv::Mat& left, const cv::Mat& right) {
+void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right) {
   stats_.detected = true;
   Clock::time_point t0 = Clock::now();
   detections_[0] = DetectLines(*detector_, options_.detection, left);
@@ -128,6 +198,48 @@ void StereoFrontEnd::Detect(const cv::Mat& left, const cv::Mat& right) {
   t0 = Clock::now();
   matcher_.Match(left, right, detections_[0], descriptors_[0], detections_[1], descriptors_[1], &matches_);
   stats_.matched = static_cast<int>(matches_.size());
+  stats_.times.match += Since(t0);
+}
+
+void StereoFrontEnd::Rematch() {
+  // The lost lines' descriptors, in the previous left image (level 0 of its pyramid).
+  Clock::time_point t0 = Clock::now();
+  const MotionOptions& motion = options_.motion;
+  msld_.SetImage(previous_[0][0]);
+  queries_.clear();
+  std::vector<int> query_line;
+  for (int i = 0; i < static_cast<int>(lost_.size()); ++i) {
+    FrameMatchQuery query;
+    if (!msld_.Compute(lost_[i].line.left, &query.descriptor)) continue;
+    query.predicted = lost_[i].predicted[0];
+    query.gate_px = motion.rematch_distance_px * (lost_[i].from_prediction ? 1.0 : motion.unpredicted_gate_scale);
+    queries_.push_back(query);
+    query_line.push_back(i);
+  }
+  stats_.times.describe += Since(t0);
+
+  t0 = Clock::now();
+  candidates_.resize(matches_.size());
+  candidate_descriptors_.resize(matches_.size());
+  for (size_t m = 0; m < matches_.size(); ++m) {
+    candidates_[m] = detections_[0][matches_[m].left].segment;
+    candidate_descriptors_[m] = descriptors_[0][matches_[m].left];
+  }
+  const FrameMatchGates gates{motion.rematch_angle_deg, options_.matching.max_msld_distance, options_.matching.msld_ratio};
+  MatchAcrossFrames(gates, queries_, candidates_, candidate_descriptors_, &frame_matches_);
+  for (const FrameMatch& fm : frame_matches_) {
+    const LostLine& lost = lost_[query_line[fm.query]];
+    const Segment2d& right = detections_[1][matches_[fm.candidate].right].segment;
+    // The stereo partner must be where the line is predicted in the right image too.
+    if (!InsidePredictionGate(lost.predicted[1], right, motion.rematch_angle_deg, queries_[fm.query].gate_px)) continue;
+    live_.push_back({lost.line.id, candidates_[fm.candidate], right});
+    ++stats_.rematched;
+  }
+  stats_.times.match += Since(t0);
+}
+
+void StereoFrontEnd::AddNewLines() {
+  const Clock::time_point t0 = Clock::now();
   // Longest first, so that max_new_lines keeps the best-conditioned lines.
   std::sort(matches_.begin(), matches_.end(), [&](const StereoMatch& x, const StereoMatch& y) {
     return detections_[0][x.left].Length() > detections_[0][y.left].Length();

@@ -3,10 +3,17 @@
 //
 // Per stereo pair:
 //   track   the live lines of the previous pair are followed into both images by optical flow
-//           (line_tracking.h; one pyramid per image, kept for the next pair);
+//           (line_tracking.h; one pyramid per image, kept for the next pair), each search
+//           seeded where the predicted camera motion moves the line's 3-D line
+//           (line_motion.h; the caller passes the tracker's prediction, image_tracking.h) or,
+//           without one, where the line's last image motion moves it (options.motion);
 //   filter  refit, loss tests, and stereo consistency: a line lost in one image is dropped in
 //           both, and a pair whose segments leave each other's epipolar beam or the disparity
 //           range is dropped;
+//   rematch when the flow lost most lines (options.motion.rematch_below_fraction), the pair's
+//           lines are detected, described and stereo-matched (the three stages below), and
+//           each lost line is looked for among them by MSLD near its predicted position
+//           (frame_matching.h): found, it keeps its id;
 //   and, on the first pair and whenever the caller asks (the tracker wants new features:
 //   PoseTracker::WantsNewFeatures, methods/pose_tracker.h):
 //   detect   line segments in both images (line_detection.h),
@@ -21,14 +28,17 @@
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "dataset/stereo_sequence.h"
+#include "frontend/frame_matching.h"
 #include "frontend/frontend_options.h"
 #include "frontend/line_detection.h"
 #include "frontend/line_tracking.h"
 #include "frontend/msld.h"
 #include "frontend/stereo_matching.h"
+#include "geometry/rigid3.h"
 
 namespace slt {
 
@@ -54,6 +64,9 @@ struct FrontEndFrameStats {
   int detected_right = 0;
   int matched = 0;         // stereo matches
   int added = 0;           // new live lines (matches that duplicate none)
+  int predicted = 0;       // tracked lines whose flow was seeded by the predicted camera motion
+  bool rematch = false;    // the flow lost most lines: re-matching ran on this pair
+  int rematched = 0;       // lost lines found again by re-matching (in `live`, not in `tracked`)
   int live = 0;            // lines in the output frame
   FrontEndStageTimes times;
 };
@@ -63,9 +76,12 @@ class StereoFrontEnd {
   StereoFrontEnd(const FrontEndOptions& options, const StereoRig& rig);
 
   // Processes the next stereo pair (8-bit grey, the rig's size). Detection runs when
-  // `detect_new_lines` or on the first pair. Throws std::invalid_argument on a wrong image
+  // `detect_new_lines` or on the first pair (and when re-matching). `predicted_motion`: the
+  // left camera's motion from the previous pair to this one, next_from_previous, as the
+  // tracker predicts it (none: no prediction). Throws std::invalid_argument on a wrong image
   // size or type.
-  const StereoFrame& Process(const cv::Mat& left, const cv::Mat& right, double time, bool detect_new_lines);
+  const StereoFrame& Process(const cv::Mat& left, const cv::Mat& right, double time, bool detect_new_lines,
+                             const std::optional<Rigid3d>& predicted_motion = std::nullopt);
 
   const FrontEndFrameStats& last_stats() const { return stats_; }
   // The detections of the last pair where detection ran (for pictures and measurements).
@@ -78,9 +94,23 @@ class StereoFrontEnd {
   struct LiveLine {
     std::int64_t id;
     Segment2d left, right;
+    // Midpoint motion in the last frame, per image (valid once tracked over one frame).
+    Eigen::Vector2d shift[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+    bool has_shift = false;
   };
-  void Track(const cv::Mat& left, const cv::Mat& right);
-  void Detect(const cv::Mat& left, const cv::Mat& right);
+  // A live line the flow lost on this pair, with where it was predicted.
+  struct LostLine {
+    LiveLine line;
+    Segment2d predicted[2];
+    bool from_prediction;  // predicted from the camera motion (else from the image motion)
+  };
+  void Track(const std::optional<Rigid3d>& predicted_motion);
+  // Detection, description and stereo matching of the pair (detections_, descriptors_, matches_).
+  void DetectAndMatch(const cv::Mat& left, const cv::Mat& right);
+  // Looks for the lost lines among the matches.
+  void Rematch();
+  // New live lines from the matches that duplicate none.
+  void AddNewLines();
   bool DuplicatesLiveLine(const Segment2d& left) const;
 
   FrontEndOptions options_;
@@ -101,6 +131,14 @@ class StereoFrontEnd {
   std::vector<StereoMatch> matches_;
   std::vector<Segment2d> segments_[2], tracked_[2];
   std::vector<char> ok_[2];
+  std::vector<Eigen::Matrix3d> maps_[2];
+  std::vector<char> from_prediction_;
+  std::vector<double> depths_;
+  std::vector<LostLine> lost_;
+  std::vector<FrameMatchQuery> queries_;
+  std::vector<Segment2d> candidates_;
+  std::vector<MsldDescriptor> candidate_descriptors_;
+  std::vector<FrameMatch> frame_matches_;
 };
 
 }  // namespace slt

@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
     ImageTracker image_tracker(front_end, *tracker, rig);
     Trajectory trajectory;
     std::ostringstream log;
-    log << "frame,time,status,lines,detected,added,lost,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms\n";
+    log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms\n";
     const bool show_progress = progress_forced || ::isatty(STDERR_FILENO);
     int counts[kNumTrackingStatuses] = {};
     ProgressBar progress;
@@ -132,7 +132,8 @@ int main(int argc, char** argv) {
       if (pictures) pictures->AddFrame(k - first, images.left, images.right, front_end, *step.frame, step.output);
       const FrontEndStageTimes& t = stats.times;
       log << k << "," << images.time << "," << TrackingStatusName(step.output.status) << "," << stats.live << ","
-          << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost << "," << 1e3 * t.detect << ","
+          << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost << "," << stats.predicted << ","
+          << stats.rematched << "," << 1e3 * t.detect << ","
           << 1e3 * t.describe << "," << 1e3 * t.match << "," << 1e3 * t.track << "," << 1e3 * t.filter << ","
           << 1e3 * step.tracker_seconds << "," << 1e3 * read << "\n";
       if (show_progress) {

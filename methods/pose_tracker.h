@@ -124,9 +124,11 @@ class PoseTracker {
   // Sec. 3.3), a frame-to-frame or window tracker when its live line count falls. The default,
   // yes on every frame, is always correct, only slower.
   virtual bool WantsNewFeatures() const { return true; }
-  // Hook for seeding the front end's optical flow (real sequences with fast motion): the
-  // tracker's prediction of the left camera's cam_from_world at the next frame, or nothing when
-  // it has none (the default). The front end does not use it yet.
+  // Asked after each Track(), like WantsNewFeatures: the tracker's prediction of the left
+  // camera's cam_from_world at the next frame, or nothing when it has none (the default). The
+  // front end seeds its optical flow with the motion it implies (frontend/image_tracking.h;
+  // real sequences with large motion, issue 19); without one it extrapolates the tracker's
+  // last two poses.
   virtual std::optional<Rigid3d> PredictNext() const { return std::nullopt; }
 };
 

@@ -1,17 +1,16 @@
 #include "render/sequence_renderer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
+#include "common/file_io.h"
+#include "common/parallel.h"
 #include "dataset/euroc.h"
 #include "geometry/distortion.h"
 #include "geometry/se3.h"
@@ -107,7 +106,7 @@ cv::Mat SequenceRenderer::Image(int frame, int camera) const {
 void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
                         int threads, const std::function<void(int done, int total)>& progress) {
   namespace fs = std::filesystem;
-  const fs::path final_dir = fs::path(dir) / "mav0", work = fs::path(dir) / "mav0.partial";
+  const fs::path final_dir = fs::path(dir) / "mav0", work = StagingDir(final_dir.string());
   fs::remove_all(work);
   const char* camera_names[2] = {"cam0", "cam1"};
   for (const char* name : camera_names) fs::create_directories(work / name / "data");
@@ -124,34 +123,19 @@ void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequenc
   }
 
   const SequenceRenderer renderer(sequence, config);
-  std::atomic<int> next{0};
-  std::mutex mutex;
+  std::mutex mutex;  // guards done and the progress callback
   int done = 0;
-  std::exception_ptr failure;
-  const auto worker = [&]() {
-    try {
-      for (int k = next++; k < frames; k = next++) {
-        for (int camera = 0; camera < 2; ++camera) {
-          const fs::path file = work / camera_names[camera] / "data" / (std::to_string(timestamps[k]) + ".png");
-          if (!cv::imwrite(file.string(), renderer.Image(k, camera))) {
-            throw std::runtime_error(file.string() + ": cannot write image");
-          }
-        }
-        const std::lock_guard<std::mutex> lock(mutex);
-        ++done;
-        if (progress) progress(done, frames);
+  ParallelFor(static_cast<size_t>(frames), threads, [&](size_t k) {
+    for (int camera = 0; camera < 2; ++camera) {
+      const fs::path file = work / camera_names[camera] / "data" / (std::to_string(timestamps[k]) + ".png");
+      if (!cv::imwrite(file.string(), renderer.Image(static_cast<int>(k), camera))) {
+        throw std::runtime_error(file.string() + ": cannot write image");
       }
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(mutex);
-      if (!failure) failure = std::current_exception();
-      next = frames;  // the others stop at their next frame
     }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < std::max(1, threads); ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+    const std::lock_guard<std::mutex> lock(mutex);
+    ++done;
+    if (progress) progress(done, frames);
+  });
 
   const StereoRig& rig = sequence.sequence.rig;  // the calibration given to the tracker
   for (int camera = 0; camera < 2; ++camera) {
@@ -167,8 +151,7 @@ void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequenc
     WriteEurocImageList((work / camera_names[camera] / "data.csv").string(), timestamps);
   }
   WriteEurocGroundTruth((work / "state_groundtruth_estimate0" / "data.csv").string(), sequence.ground_truth);
-  fs::remove_all(final_dir);
-  fs::rename(work, final_dir);
+  ReplaceDirectory(work.string(), final_dir.string());
 }
 
 }  // namespace slt

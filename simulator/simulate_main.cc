@@ -94,9 +94,7 @@ int main(int argc, char** argv) {
     const SimulatedSequence result = Simulate(config);
 
     const std::filesystem::path dir(out_dir);
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);
-    if (error) throw std::runtime_error(out_dir + ": cannot create directory (" + error.message() + ")");
+    CreateDirectories(out_dir);
     const std::vector<std::string> outputs = {(dir / "seq.json").string(), (dir / "gt.tum").string(),
                                               (dir / "scene.csv").string(), (dir / "config.resolved.json").string()};
     for (const std::string& output : outputs) RefuseOutputThatIsInput("--out", output, {config_path});
@@ -116,6 +114,7 @@ int main(int argc, char** argv) {
       }
       WriteJsonFile(outputs[3], SimulationConfigToJson(config));
     } catch (...) {
+      std::error_code error;
       for (const std::string& output : outputs) std::filesystem::remove(output, error);
       throw;
     }

@@ -394,3 +394,51 @@ INSTANTIATE_TEST_SUITE_P(States, FirstUpdate, ::testing::Values(FilterState::kVe
 
 }  // namespace
 }  // namespace slt
+
+namespace slt {
+namespace {
+
+TEST(PredictNext, IsTheMotionModelsPredictionChainedToTheWorld) {
+  // The front end's seed (frontend/image_tracking.h): nothing before the first update, then the
+  // pose the next frame's Gate() predicts, M_t+1|t = Exp(xi) M_t, in the world; across new
+  // reference pair too: half the lines change their ids at frame 15 (as if lost and detected
+  // again), which makes the tracker take a new reference.
+  SimulationConfig config = SimulationConfigFromJson(nlohmann::json::object(), "test");
+  config.seed = 5;
+  SimulatedSequence sim = Simulate(config);
+  for (int k = 15; k < static_cast<int>(sim.sequence.frames.size()); ++k) {
+    for (auto* side : {&sim.sequence.frames[k].left, &sim.sequence.frames[k].right}) {
+      for (LineObservation& o : *side) {
+        if (o.id % 2 == 0) o.id += 1000;
+      }
+    }
+  }
+  auto tracker = CreateTracker("trifocal_line_ekf");
+  auto* ekf = dynamic_cast<StereoEkfTracker*>(tracker.get());
+  ASSERT_NE(ekf, nullptr);
+  tracker->Reset(sim.sequence.rig);
+  EXPECT_FALSE(tracker->PredictNext().has_value());
+  tracker->Track(sim.sequence.frames[0]);
+  EXPECT_FALSE(tracker->PredictNext().has_value());  // no velocity measured yet
+  double predicted_error = 0.0, still_error = 0.0;
+  for (int k = 1; k + 1 < 40; ++k) {
+    const TrackerOutput out = tracker->Track(sim.sequence.frames[k]);
+    const std::optional<Rigid3d> next = tracker->PredictNext();
+    ASSERT_TRUE(next.has_value()) << "frame " << k;
+    // The same chaining as the tracker's output: the filter's predicted cam_from_ref times the
+    // reference's ref_from_world (= cam_from_ref^-1 * cam_from_world).
+    const Rigid3d ref_from_world = ekf->filter().cam_from_ref().Inverse() * out.cam_from_world;
+    const Rigid3d expected = ExpSE3(ekf->filter().velocity()) * ekf->filter().cam_from_ref() * ref_from_world;
+    EXPECT_LT((next->translation - expected.translation).norm(), 1e-12);
+    EXPECT_LT((next->rotation - expected.rotation).norm(), 1e-12);
+    const Rigid3d truth = sim.ground_truth[k + 1].world_from_cam.Inverse();
+    predicted_error += (next->Center() - truth.Center()).norm();
+    still_error += (out.cam_from_world.Center() - truth.Center()).norm();
+  }
+  EXPECT_GE(ekf->counters().new_references, 1);
+  // A prediction, not the last pose: closer to the next frame's pose than standing still.
+  EXPECT_LT(predicted_error, still_error);
+}
+
+}  // namespace
+}  // namespace slt

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <bitset>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "common/options.h"
@@ -94,6 +95,14 @@ class FeatureModel {
   // not measurable.
   virtual bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                         FeatureBlock* block) const = 0;
+  // Called after each measured frame with the updated pose and the features of the update. A
+  // model that refines its reference structure from past frames (the trifocal EKF's
+  // reference refinement, issue 16) may do so here; it returns true and sets
+  // *refined_cam_from_ref when the current pose is to move to the pose refined with it.
+  virtual bool RefineStructure(const Rigid3d& /*cam_from_ref*/, const std::vector<int>& /*used*/,
+                               Rigid3d* /*refined_cam_from_ref*/) {
+    return false;
+  }
 };
 
 }  // namespace slt

@@ -20,6 +20,12 @@ void PoseVelocityFilter::Reset(const StereoEkfOptions& options) {
   covariance_.bottomRightCorner<6, 6>() = InitialVelocityCovariance();
 }
 
+Rigid3d PoseVelocityFilter::Step() const {
+  return options_.integration == Integration::kFirstOrder ? FirstOrderSE3(velocity_) : ExpSE3(velocity_);
+}
+
+Rigid3d PoseVelocityFilter::PredictedCamFromRef() const { return Step() * cam_from_ref_; }
+
 void PoseVelocityFilter::Predict() {
   if (options_.state == FilterState::kVelocity) {
     // The paper's filter: M_{t-1} is exact, only the velocity is uncertain.
@@ -32,7 +38,7 @@ void PoseVelocityFilter::Predict() {
   for (int i = 6; i < 9; ++i) covariance_(i, i) += qm;
   for (int i = 9; i < 12; ++i) covariance_(i, i) += qr;
 
-  const Rigid3d step = options_.integration == Integration::kFirstOrder ? FirstOrderSE3(velocity_) : ExpSE3(velocity_);
+  const Rigid3d step = Step();
   // F = [[Ad(step), J_l(xi)], [0, I]]; P <- F P F^T, written blockwise.
   const Matrix6d ad = Adjoint(step);
   // J_l to first order: per-frame twists are small and it only enters the covariance.

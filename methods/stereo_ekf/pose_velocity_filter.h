@@ -28,6 +28,8 @@ class PoseVelocityFilter {
 
   void Reset(const StereoEkfOptions& options);
   void Predict();
+  // The pose Predict() will give, M_t|t-1 = Exp(xi) M_{t-1}, without changing the state.
+  Rigid3d PredictedCamFromRef() const;
   // `prior_pose_information` is P_pp^-1 at the prediction (the caller has it already).
   void Correct(const Vector6d& delta, const Matrix6d& posterior_pose_covariance,
                const Matrix6d& prior_pose_information);
@@ -44,6 +46,9 @@ class PoseVelocityFilter {
   // widened the gate and let outliers in when the features came back (measured on the
   // feature-count sweep with 20-30 % outliers).
   void DampVelocity(double factor);
+  // Moves the pose to `cam_from_ref` (re-estimated with refined structure), keeping the
+  // velocity and the covariance.
+  void MovePose(const Rigid3d& cam_from_ref) { cam_from_ref_ = cam_from_ref; }
   // The current camera becomes the reference: the relative pose is exactly the identity.
   void StartNewReferencePair();
 
@@ -55,6 +60,8 @@ class PoseVelocityFilter {
 
  private:
   Matrix6d InitialVelocityCovariance() const;
+  // The motion of one frame, Exp(xi) (or its first-order form).
+  Rigid3d Step() const;
 
   StereoEkfOptions options_;
   Rigid3d cam_from_ref_;

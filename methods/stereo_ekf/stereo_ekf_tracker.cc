@@ -68,6 +68,7 @@ void StereoEkfTracker::Reset(const StereoRig& rig) {
 
 TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   started_ = true;
+  velocity_measured_ = false;
   healthy_ = true;
   frames_since_start_ = 0;
   previous_inliers_ = 0;
@@ -368,6 +369,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
                                        : StatusReason::kNoUpdate;
   } else {
     const int rows = MeasuredRows();
+    velocity_measured_ = true;
     healthy_ = state->cost <= HealthyCost(rows);
     AdaptNoiseScale(rows);
     const bool constrained = ConstrainsEveryDirection(frame_information_);
@@ -396,6 +398,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
     // Defensive: never hand out (or predict from) a non-finite state. Restart from the last
     // good pose, with zero velocity.
     filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4, /*previous_pose_trusted=*/false);
+    velocity_measured_ = false;
     healthy_ = false;
     state->used = 0;
     noise_scale_sq_ = 1.0;
@@ -407,6 +410,14 @@ void StereoEkfTracker::Assess(FrameState* state) {
   out.features_used = state->used;
   out.features_outside_gate = state->valid - state->used;
   SetOutputPose(&out);
+}
+
+void StereoEkfTracker::RefineStructure(FrameState* state) {
+  if (state->out.status == TrackingStatus::kLost) return;
+  Rigid3d refined;
+  if (!model_->RefineStructure(filter_.cam_from_ref(), inliers_, &refined)) return;
+  filter_.MovePose(refined);
+  SetOutputPose(&state->out);
 }
 
 void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* state) {
@@ -431,6 +442,11 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   }
 }
 
+std::optional<Rigid3d> StereoEkfTracker::PredictNext() const {
+  if (!started_ || !velocity_measured_) return std::nullopt;
+  return filter_.PredictedCamFromRef() * ref_from_world_;
+}
+
 TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
   ++counters_.frames;
   if (!started_) return Start(frame);
@@ -439,6 +455,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
   RobustStart(&state);
   Update(&state);
   Assess(&state);
+  RefineStructure(&state);
   NewReferencePair(frame, &state);
   return state.out;
 }

@@ -50,6 +50,10 @@ class StereoEkfTracker : public PoseTracker {
   // lines. (When the count falls below the threshold between two frames, the new reference
   // comes one frame later.)
   bool WantsNewFeatures() const override { return !started_ || wants_new_features_; }
+  // The motion model's prediction (eq. 18) of the next frame's pose, M_t+1|t = Exp(xi) M_t,
+  // chained to the world: once a frame has been measured (before that the velocity is the
+  // prior's zero, no prediction).
+  std::optional<Rigid3d> PredictNext() const override;
 
   // Counters since Reset, for tests and diagnostics.
   struct Counters {
@@ -87,6 +91,9 @@ class StereoEkfTracker : public PoseTracker {
   void RobustStart(FrameState* state);
   void Update(FrameState* state);
   void Assess(FrameState* state);
+  // Lets the model refine its reference structure (FeatureModel::RefineStructure) after a
+  // measured frame, and moves the pose where the model says.
+  void RefineStructure(FrameState* state);
   void NewReferencePair(const StereoFrame& frame, FrameState* state);
   // Pose and covariance of the output in the world: cam_from_world = cam_from_ref *
   // ref_from_world, so with independent errors (left perturbations, docs/conventions.md)
@@ -118,6 +125,7 @@ class StereoEkfTracker : public PoseTracker {
   std::vector<double> healthy_cost_;  // HealthyCost by rows, filled as needed
 
   bool started_ = false;
+  bool velocity_measured_ = false;  // an update has informed the velocity since Start
   // Robustness policy state: the last frame's health and update size, the noise scale.
   bool healthy_ = true;
   bool wants_new_features_ = true;

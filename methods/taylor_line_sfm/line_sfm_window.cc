@@ -322,11 +322,7 @@ WindowSolveReport LineSfmWindow::SolveOnce() {
     if (line.offset >= 0) std::copy(line.parameters, line.parameters + kLineAmbientSize, workspace_.data() + line.offset);
   }
 
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
+  ceres::Problem problem(BorrowingProblemOptions());
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
 
   size_t used = 0;

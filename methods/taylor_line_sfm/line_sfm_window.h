@@ -40,9 +40,9 @@
 #include <vector>
 
 #include "dataset/stereo_sequence.h"
-#include "methods/taylor_line_sfm/line_sfm_manifolds.h"
+#include "optim/line_sfm_manifolds.h"
 #include "methods/taylor_line_sfm/taylor_line_sfm_options.h"
-#include "methods/taylor_line_sfm/taylor_segment_cost.h"
+#include "optim/taylor_segment_cost.h"
 
 namespace slt {
 

@@ -36,7 +36,15 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
           .Field("min_epipolar_angle_deg", &O::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines this close to the epipolar direction are not measured")
           .Field("min_plane_angle_deg", &O::min_plane_angle_deg, InRange(0.0, 90.0, "[)"),
-                 "current_to_reference: transfers through planes this close are not measured (Sec. 4)");
+                 "current_to_reference: transfers through planes this close are not measured (Sec. 4)")
+          .Child("refinement", &O::refinement, ReferenceRefinementOptionsSchema(),
+                 "joint refinement of the reference lines with keyframe poses (issue 16)")
+          .Check("refinement.enabled", [](const O& o) {
+            return o.refinement.enabled && (o.direction != TransferDirection::kReferenceToCurrent ||
+                                            o.noise != MeasurementNoise::kPropagated)
+                       ? std::string("needs direction reference_to_current and noise propagated")
+                       : std::string();
+          });
   return schema;
 }
 
@@ -66,6 +74,9 @@ LineTransferModel::LineTransferModel(const LineTransferOptions& options) : optio
   }
   fixed_covariance_ = fixed_sigma.array().square().matrix().asDiagonal();
   covariance_floor_ = floor.array().square();
+  if (options_.refinement.enabled) {
+    refiner_ = std::make_unique<ReferenceRefiner>(options_.refinement, options_.endpoint_sigma_px);
+  }
 }
 
 const Rigid3d& LineTransferModel::RightFromRef(const Rigid3d& cam_from_ref) const {
@@ -90,6 +101,7 @@ void LineTransferModel::Reset(const StereoRig& rig) {
   current_.clear();
   matches_.clear();
   current_stereo_ = 0;
+  if (refiner_) refiner_->Reset(rig);
 }
 
 bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamera& camera,
@@ -143,6 +155,16 @@ void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector
 }
 
 int LineTransferModel::SetReference(const StereoFrame& frame) {
+  // Refined lines of the previous reference, carried into the new one when this frame's pose
+  // is known (RefineStructure ran on it): L_new = new_from_old L_old, with the covariance of
+  // the tangent moved along, C_new = B_new^+ A B_old C_old B_old^T A^T B_new^+T (A the
+  // transform of [n; d], B the tangent bases).
+  std::vector<std::pair<std::int64_t, ReferenceLine>> carried;
+  if (refiner_ && last_pose_valid_ && options_.refinement.carry_over) {
+    for (size_t i = 0; i < reference_.size(); ++i) {
+      if (reference_lines_[i].refined) carried.emplace_back(reference_[i].id, reference_lines_[i]);
+    }
+  }
   CollectStereoLines(frame, &reference_);
   reference_lines_.resize(reference_.size());
   for (size_t i = 0; i < reference_.size(); ++i) {
@@ -152,12 +174,45 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     out.line = StereoPairLine(rig_.right_from_left, ref.left.line, ref.right.line, &d_left, &d_right);
     out.line_d_left_segment = d_left * ref.left.line_d_segment;
     out.line_d_right_segment = d_right * ref.right.line_d_segment;
+    out.refined = false;
+  }
+  if (refiner_) {
+    refiner_->StartReference(static_cast<int>(reference_.size()));
+    for (size_t i = 0; i < reference_.size(); ++i) {
+      refiner_->SetLine(static_cast<int>(i), reference_lines_[i].line, !reference_[i].degenerate,
+                        reference_[i].left.segment, reference_[i].right.segment, reference_[i].left.line);
+    }
+    Matrix6d transform = Matrix6d::Zero();  // [n; d] -> new frame: [R, [t]x R; 0, R]
+    transform.topLeftCorner<3, 3>() = last_cam_from_ref_.rotation;
+    transform.topRightCorner<3, 3>() = Skew(last_cam_from_ref_.translation) * last_cam_from_ref_.rotation;
+    transform.bottomRightCorner<3, 3>() = last_cam_from_ref_.rotation;
+    size_t c = 0;
+    for (size_t i = 0; i < reference_.size() && c < carried.size(); ++i) {
+      while (c < carried.size() && carried[c].first < reference_[i].id) ++c;
+      if (c == carried.size() || carried[c].first != reference_[i].id) continue;
+      const ReferenceLine& old = carried[c].second;
+      const int index = static_cast<int>(i);
+      refiner_->SetCarriedLine(index, TransformPluecker(last_cam_from_ref_, old.line), Eigen::Matrix4d::Identity());
+      const Eigen::Matrix<double, 6, 4> basis = refiner_->TangentBasis(index);
+      const Eigen::Matrix<double, 4, 6> pseudo_inverse =
+          (basis.transpose() * basis).ldlt().solve(basis.transpose());
+      const Eigen::Matrix<double, 4, 4> move = pseudo_inverse * transform * old.line_d_tangent;
+      const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
+      refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
+      if (!refiner_->Refined(index)) continue;
+      ReferenceLine& line = reference_lines_[i];
+      line.line = refiner_->Line(index);
+      line.line_d_tangent = basis;
+      line.tangent_covariance = refiner_->Covariance(index);
+      line.refined = true;
+    }
   }
   matches_.clear();
   return CountUsable(reference_);
 }
 
 int LineTransferModel::SetCurrent(const StereoFrame& frame) {
+  last_pose_valid_ = false;
   CollectStereoLines(frame, &current_);
   current_stereo_ = CountUsable(current_);
   matches_.clear();
@@ -219,7 +274,9 @@ Eigen::Vector2d LineTransferModel::Residual(const Eigen::Vector3d& line, const O
 bool LineTransferModel::EndpointDistances(int index, const Rigid3d& cam_from_ref, Eigen::Vector4d* distances) const {
   const Match& match = matches_[index];
   const StereoLine& ref = reference_[match.reference];
-  if (paper_direction_ || !distance_residual_ || ref.degenerate) return false;
+  if (paper_direction_ || !distance_residual_ || (ref.degenerate && !reference_lines_[match.reference].refined)) {
+    return false;
+  }
   const StereoLine& cur = current_[match.current];
   const PlueckerLine& line = reference_lines_[match.reference].line;
   const Eigen::Vector3d left = left_pixel_from_normalized_ * TransformPluecker(cam_from_ref, line).moment;
@@ -235,8 +292,9 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
   const Match& match = matches_[index];
   const StereoLine& ref = reference_[match.reference];
   const StereoLine& cur = current_[match.current];
-  // The reference pair defines the line in both directions.
-  if (ref.degenerate) return false;
+  // The reference pair defines the line in both directions, or the reference refinement
+  // triangulated it.
+  if (ref.degenerate && !reference_lines_[match.reference].refined) return false;
   block->measured_rows = FeatureBlock::kAllRows;
   // Noise Jacobian columns: endpoints of [ref left | ref right | cur left | cur right].
   Eigen::Matrix<double, 4, 16> noise_jacobian;
@@ -245,6 +303,8 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
   Eigen::Matrix<double, 2, 4>* want_m1 = with_covariance && propagated_noise_ ? &m1 : nullptr;
   Eigen::Matrix<double, 2, 4>* want_m2 = with_covariance && propagated_noise_ ? &m2 : nullptr;
   const bool propagate = want_m1 != nullptr;
+  Eigen::Matrix4d refined_covariance;
+  const Eigen::Matrix4d* line_covariance = nullptr;
 
   if (paper_direction_) {
     CurrentToReferenceTransfer t;
@@ -315,6 +375,16 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
       noise_jacobian.block<2, 4>(2, 4).noalias() = d2_line * line.line_d_right_segment;
       noise_jacobian.block<2, 4>(2, 8).setZero();
       noise_jacobian.block<2, 4>(2, 12) = m2;
+      if (line.refined) {
+        // The refined line's own uncertainty replaces the reference endpoints'.
+        noise_jacobian.block<2, 8>(0, 0).setZero();
+        noise_jacobian.block<2, 8>(2, 0).setZero();
+        Eigen::Matrix<double, 4, 4> d_tangent;
+        d_tangent.topRows<2>().noalias() = d1_line * line.line_d_tangent;
+        d_tangent.bottomRows<2>().noalias() = d2_line * line.line_d_tangent;
+        refined_covariance.noalias() = d_tangent * line.tangent_covariance * d_tangent.transpose();
+        line_covariance = &refined_covariance;
+      }
     }
   }
   if (with_covariance) {
@@ -322,12 +392,46 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
       const double var = options_.endpoint_sigma_px * options_.endpoint_sigma_px;
       block->covariance = var * NoiseCovariance(noise_jacobian, paper_direction_ ? 4 : 8);
       block->covariance.diagonal() += covariance_floor_;
+      if (line_covariance) block->covariance += *line_covariance;
     } else {
       block->covariance = fixed_covariance_;
     }
   }
   block->ClearUnmeasuredRows(with_covariance);
   return true;
+}
+
+bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
+                                        Rigid3d* refined_cam_from_ref) {
+  if (!refiner_) return false;
+  last_cam_from_ref_ = cam_from_ref;
+  last_pose_valid_ = true;
+  if (!refiner_->CountFrame()) return false;
+  // The features of the update, and the lines not measured yet because the reference pair
+  // does not define them (the refinement triangulates them from the keyframes).
+  keyframe_observations_.clear();
+  auto add = [&](const Match& m) {
+    const StereoLine& cur = current_[m.current];
+    keyframe_observations_.push_back({m.reference, cur.left.segment, cur.right.segment, cur.left.line});
+  };
+  for (int index : used) add(matches_[index]);
+  for (const Match& m : matches_) {
+    if (reference_[m.reference].degenerate && !reference_lines_[m.reference].refined) add(m);
+  }
+  Rigid3d refined;
+  if (!refiner_->AddKeyframeAndSolve(cam_from_ref, keyframe_observations_, &refined)) return false;
+  for (size_t i = 0; i < reference_lines_.size(); ++i) {
+    const int index = static_cast<int>(i);
+    if (!refiner_->Refined(index)) continue;
+    ReferenceLine& line = reference_lines_[i];
+    line.line = refiner_->Line(index);
+    line.line_d_tangent = refiner_->TangentBasis(index);
+    line.tangent_covariance = refiner_->Covariance(index);
+    line.refined = true;
+  }
+  *refined_cam_from_ref = refined;
+  if (options_.refinement.move_pose) last_cam_from_ref_ = refined;
+  return options_.refinement.move_pose;
 }
 
 }  // namespace slt

@@ -25,6 +25,7 @@
 //     respect to the 16 endpoint coordinates of the four observed segments.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@
 #include "common/options.h"
 #include "geometry/plucker.h"
 #include "methods/stereo_ekf/feature_model.h"
+#include "methods/trifocal_line_ekf/reference_refinement.h"
 
 namespace slt {
 
@@ -67,6 +69,9 @@ struct LineTransferOptions {
   // than this angle are not measured either (lines near the trifocal plane of the views a
   // transfer uses, Sec. 4; this also rejects distant lines). 0 = off; the paper preset uses 3.
   double min_plane_angle_deg = 0.0;
+  // Joint refinement of the reference lines with keyframe poses (reference_refinement.h; issue
+  // 16). Direction kReferenceToCurrent with the propagated R only.
+  ReferenceRefinementOptions refinement;
 
   void Check(const std::string& where = "line transfer options", const std::string& path = "") const;
 };
@@ -99,6 +104,8 @@ class LineTransferModel final : public FeatureModel {
   int CurrentStereoFeatures() const override { return current_stereo_; }
   bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                 FeatureBlock* block) const override;
+  bool RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
+                       Rigid3d* refined_cam_from_ref) override;
 
   // The id of feature `index` (for diagnostics and tests).
   std::int64_t FeatureId(int index) const { return matches_[index].id; }
@@ -122,6 +129,11 @@ class LineTransferModel final : public FeatureModel {
     PlueckerLine line;
     Eigen::Matrix<double, 6, 4> line_d_left_segment;
     Eigen::Matrix<double, 6, 4> line_d_right_segment;
+    // Refined by the reference refinement: `line` is the refined line, whose uncertainty is
+    // line_d_tangent C line_d_tangent^T (C = tangent_covariance) instead of the endpoints'.
+    bool refined = false;
+    Eigen::Matrix<double, 6, 4> line_d_tangent;
+    Eigen::Matrix4d tangent_covariance;
   };
   struct Match {
     std::int64_t id;
@@ -163,6 +175,13 @@ class LineTransferModel final : public FeatureModel {
   mutable Rigid3d cached_right_from_ref_;
   Eigen::Matrix4d fixed_covariance_;
   Eigen::Vector4d covariance_floor_;
+
+  std::unique_ptr<ReferenceRefiner> refiner_;  // when refinement.enabled
+  std::vector<ReferenceRefiner::Observation> keyframe_observations_;  // scratch
+  // The pose of the last frame given to RefineStructure (after its move), valid until the next
+  // SetCurrent: a new reference pair taken at that frame carries the refined lines over with it.
+  Rigid3d last_cam_from_ref_;
+  bool last_pose_valid_ = false;
 
   std::vector<StereoLine> reference_;
   std::vector<ReferenceLine> reference_lines_;  // parallel to reference_

@@ -33,7 +33,10 @@ std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::strin
 }  // namespace
 
 TrackerInfo TrifocalLineEkfInfo() {
-  TrackerInfo info{"trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)", Create};
+  TrackerInfo info;
+  info.name = "trifocal_line_ekf";
+  info.description = "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)";
+  info.create = Create;
   info.list_options = [] { return StereoEkfOptionDocs(LineTransferOptionsSchema()); };
   return info;
 }

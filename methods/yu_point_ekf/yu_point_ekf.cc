@@ -16,8 +16,11 @@ std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::strin
 
 TrackerInfo YuPointEkfInfo() {
   // Two points (8 scalars) determine the pose; one stereo line gives two: minimum_lines 1.
-  TrackerInfo info{"yu_point_ekf", "Point-trifocal EKF on segment endpoints (Yu, Wong, Chang et al., IEEE TIM 2008)",
-                   Create, /*plumbing_only=*/false, /*minimum_lines=*/1};
+  TrackerInfo info;
+  info.name = "yu_point_ekf";
+  info.description = "Point-trifocal EKF on segment endpoints (Yu, Wong, Chang et al., IEEE TIM 2008)";
+  info.create = Create;
+  info.minimum_lines = 1;
   info.list_options = [] { return StereoEkfOptionDocs(PointTransferOptionsSchema()); };
   return info;
 }

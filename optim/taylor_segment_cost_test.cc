@@ -1,4 +1,4 @@
-#include "methods/taylor_line_sfm/taylor_segment_cost.h"
+#include "optim/taylor_segment_cost.h"
 
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>

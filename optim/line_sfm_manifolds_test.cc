@@ -1,4 +1,4 @@
-#include "methods/taylor_line_sfm/line_sfm_manifolds.h"
+#include "optim/line_sfm_manifolds.h"
 
 #include <ceres/manifold_test_utils.h>
 #include <gtest/gtest.h>

@@ -29,7 +29,7 @@
 
 #include "geometry/camera.h"
 #include "geometry/line2d.h"
-#include "methods/taylor_line_sfm/line_sfm_manifolds.h"
+#include "optim/line_sfm_manifolds.h"
 
 namespace slt {
 

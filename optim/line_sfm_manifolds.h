@@ -24,6 +24,7 @@
 #pragma once
 
 #include <ceres/manifold.h>
+#include <ceres/problem.h>
 
 #include <Eigen/Core>
 
@@ -34,6 +35,16 @@ namespace slt {
 
 constexpr int kPoseAmbientSize = 12;
 constexpr int kLineAmbientSize = 6;
+
+// Options of a problem that owns none of its cost functions, losses and manifolds: the line
+// bundle adjustments keep them and reuse them from solve to solve.
+inline ceres::Problem::Options BorrowingProblemOptions() {
+  ceres::Problem::Options options;
+  options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  return options;
+}
 
 // [R column-major; t] <-> Rigid3d.
 void PoseToParameters(const Rigid3d& pose, double* parameters);

@@ -1,0 +1,105 @@
+#include "frontend/stereo_frontend.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+#include "frontend/line_motion.h"
+#include "frontend/rendered_pair.h"
+
+namespace slt {
+namespace {
+
+// Frames 0 and 12 of the room loop: about 12 cm and 3.6 deg apart, lines move by tens of
+// pixels, beyond the reach of a 2-level pyramid (21 px window).
+constexpr int kFar = 12;
+
+struct FarPairResult {
+  int tracked = 0, correct = 0, live = 0, predicted = 0;
+};
+
+// The front end on frame 0 (detection), then on frame kFar with or without the true motion as
+// the prediction; tracks judged against the ground-truth lines under them in both frames.
+FarPairResult TrackFarPair(const RenderedRoom& room, bool with_prediction) {
+  FrontEndOptions options;
+  options.tracking.pyramid_levels = 2;
+  options.motion.unpredicted_pyramid_levels = 2;
+  options.motion.rematch_below_fraction = 0.0;  // the flow alone
+  StereoFrontEnd front_end(options, room.rig());
+  const StereoFrame first = front_end.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true);
+  const Rigid3d cam0_from_world = room.sequence().ground_truth[0].world_from_cam.Inverse();
+  const Rigid3d cam_far_from_world = room.sequence().ground_truth[kFar].world_from_cam.Inverse();
+  const std::optional<Rigid3d> motion =
+      with_prediction ? std::optional<Rigid3d>(cam_far_from_world * cam0_from_world.Inverse()) : std::nullopt;
+  const StereoFrame& far = front_end.Process(room.Image(kFar, 0), room.Image(kFar, 1), 1.0, false, motion);
+  const ProjectedGroundTruth truth0 = room.Projected(0, 0), truth_far = room.Projected(kFar, 0);
+  std::map<std::int64_t, Segment2d> start;
+  for (const LineObservation& o : first.left) start[o.id] = o.segment;
+  FarPairResult result;
+  result.live = static_cast<int>(first.left.size());
+  result.tracked = front_end.last_stats().tracked;
+  result.predicted = front_end.last_stats().predicted;
+  std::vector<int> under0, under_far;
+  for (const LineObservation& o : far.left) {
+    truth0.LinesUnder(start.at(o.id), &under0);
+    truth_far.LinesUnder(o.segment, &under_far);
+    const bool same = std::any_of(under0.begin(), under0.end(), [&](int line) {
+      return std::binary_search(under_far.begin(), under_far.end(), line);
+    });
+    result.correct += same;
+  }
+  return result;
+}
+
+TEST(StereoFrontEnd, PredictedMotionSeedsTheFlowBeyondThePyramidsReach) {
+  const RenderedRoom room;
+  const FarPairResult plain = TrackFarPair(room, false);
+  const FarPairResult seeded = TrackFarPair(room, true);
+  ASSERT_GE(plain.live, 40);
+  // Plain LK loses most lines at this motion (or keeps them on the wrong edges) ...
+  EXPECT_LT(plain.correct, 0.15 * plain.live) << plain.correct << " of " << plain.live;
+  // ... the seeded flow keeps most of them, on their own 3-D lines.
+  EXPECT_GE(seeded.predicted, 0.6 * seeded.tracked);
+  EXPECT_GE(seeded.tracked, 0.4 * seeded.live) << seeded.tracked << " of " << seeded.live;
+  EXPECT_GE(seeded.correct, 0.95 * seeded.tracked) << seeded.correct << " of " << seeded.tracked;
+}
+
+TEST(LineMotion, PlaneHomographiesMoveTheLinesPointsExactly) {
+  // A 3-D line seen by the default rig, the camera moved by a large known motion: the maps
+  // send the old images' points of the line onto the new images' line.
+  const StereoRig rig;
+  const Eigen::Vector3d p(-0.3, 0.2, 2.0), q(0.4, -0.25, 3.0);
+  const Rigid3d next_from_previous(Eigen::AngleAxisd(0.1, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix(),
+                                   Eigen::Vector3d(0.3, -0.05, -0.4));
+  const auto project = [&](const Rigid3d& cam_from_left, const PinholeCamera& camera, const Eigen::Vector3d& x) {
+    return camera.Project(cam_from_left * x);
+  };
+  const Rigid3d identity;
+  const auto segment = [&](const Rigid3d& cam_from_left, const PinholeCamera& camera) {
+    Segment2d s;
+    s << project(cam_from_left, camera, p), project(cam_from_left, camera, q);
+    return s;
+  };
+  StereoLineMaps maps;
+  ASSERT_TRUE(PredictStereoLineMotion(rig, next_from_previous, segment(identity, rig.left),
+                                      segment(rig.right_from_left, rig.right), 0.01, &maps));
+  for (double f : {0.0, 0.3, 1.0}) {
+    const Eigen::Vector3d x = p + f * (q - p);
+    const Eigen::Vector2d left_now = project(next_from_previous, rig.left, x);
+    const Eigen::Vector2d right_now = project(rig.right_from_left * next_from_previous, rig.right, x);
+    const Eigen::Vector3d l = maps.left * Homogeneous(project(identity, rig.left, x));
+    const Eigen::Vector3d r = maps.right * Homogeneous(project(rig.right_from_left, rig.right, x));
+    EXPECT_LT((l.head<2>() / l.z() - left_now).norm(), 1e-6);
+    EXPECT_LT((r.head<2>() / r.z() - right_now).norm(), 1e-6);
+  }
+  // A line in an epipolar plane (parallel to the baseline) has no depth from the pair.
+  const Eigen::Vector3d a(-0.3, 0.2, 2.0), b(0.3, 0.2, 2.0);
+  Segment2d left_h, right_h;
+  left_h << project(identity, rig.left, a), project(identity, rig.left, b);
+  right_h << project(rig.right_from_left, rig.right, a), project(rig.right_from_left, rig.right, b);
+  EXPECT_FALSE(PredictStereoLineMotion(rig, next_from_previous, left_h, right_h, 0.01, &maps));
+}
+
+}  // namespace
+}  // namespace slt

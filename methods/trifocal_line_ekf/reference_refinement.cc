@@ -1,0 +1,315 @@
+#include "methods/trifocal_line_ekf/reference_refinement.h"
+
+#include <ceres/numeric_diff_cost_function.h>
+#include <ceres/problem.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace slt {
+namespace {
+
+// The prior of a carried line: r = S Minus(L, L0), S^T S the inverse of its covariance.
+struct LinePrior {
+  bool operator()(const double* line, double* residual) const {
+    Eigen::Vector4d d;
+    LineManifold().Minus(line, prior, d.data());
+    Eigen::Map<Eigen::Vector4d> out(residual);
+    out = sqrt_information * d;
+    return true;
+  }
+  double prior[kLineAmbientSize];
+  Eigen::Matrix4d sqrt_information;
+};
+
+}  // namespace
+
+const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema() {
+  using O = ReferenceRefinementOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>()
+          .Field("enabled", &O::enabled,
+                 "refine the reference lines jointly with keyframe poses (direction reference_to_current only)")
+          .Field("keyframe_interval", &O::keyframe_interval, AtLeast(1), "measured frames between keyframes")
+          .Field("max_keyframes", &O::max_keyframes, AtLeast(1), "keyframes kept in the refinement window")
+          .Field("max_iterations", &O::max_iterations, AtLeast(1), "Levenberg-Marquardt steps per refinement")
+          .Field("huber_sigma", &O::huber_sigma, Positive(), "Huber threshold of the segment residual (sigmas)")
+          .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
+          .Field("carry_over", &O::carry_over,
+                 "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
+          .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
+                 "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)");
+  return schema;
+}
+
+void ReferenceRefinementOptions::Check(const std::string& where, const std::string& path) const {
+  ReferenceRefinementOptionsSchema().Validate(*this, where, path);
+}
+
+ReferenceRefiner::ReferenceRefiner(const ReferenceRefinementOptions& options, double endpoint_sigma_px)
+    : options_(options),
+      // Taylor's residual (weight 1) is (h1^2 + h1 h2 + h2^2) / (3 sigma^2) over the endpoint
+      // distances h1, h2; with sigma^2 = sigma_e^2 / 2 its information on the line's offset
+      // (h1 = h2) is that of two independent endpoints, 2 / sigma_e^2, and on its tilt
+      // (h1 = -h2) a third of it: a little conservative.
+      sigma_px_(endpoint_sigma_px / std::sqrt(2.0)),
+      min_triangulation_sine_(std::sin(options.min_triangulation_angle_deg * M_PI / 180.0)),
+      loss_(std::make_unique<ceres::HuberLoss>(options.huber_sigma)) {
+  options_.Check();
+  solver_options_.linear_solver_type = ceres::DENSE_SCHUR;
+  solver_options_.max_num_iterations = options_.max_iterations;
+  solver_options_.num_threads = 1;
+  solver_options_.logging_type = ceres::SILENT;
+  solver_options_.minimizer_progress_to_stdout = false;
+  PoseToParameters(Rigid3d(), reference_pose_);
+}
+
+void ReferenceRefiner::Reset(const StereoRig& rig) {
+  cameras_[0] = SegmentCamera::FromRig(rig, true);
+  cameras_[1] = SegmentCamera::FromRig(rig, false);
+  StartReference(0);
+}
+
+void ReferenceRefiner::StartReference(int lines) {
+  lines_.clear();
+  lines_.resize(lines);
+  keyframes_.clear();
+  frames_since_keyframe_ = 0;
+}
+
+void ReferenceRefiner::SetLine(int index, const PlueckerLine& line, bool usable, const Segment2d& left,
+                               const Segment2d& right, const Eigen::Vector3d& left_line) {
+  LineState& s = lines_[index];
+  s.left_line = left_line;
+  s.usable = usable && LineToParameters(line, s.parameters);
+  s.refined = false;
+  s.has_prior = false;
+  s.prior_cost.reset();
+  s.left = left;
+  s.right = right;
+}
+
+void ReferenceRefiner::SetCarriedLine(int index, const PlueckerLine& line, const Eigen::Matrix4d& covariance) {
+  LineState& s = lines_[index];
+  auto* prior = new LinePrior;
+  Eigen::LLT<Eigen::Matrix4d> llt(covariance);
+  if (!LineToParameters(line, s.parameters) || !LineToParameters(line, prior->prior) || llt.info() != Eigen::Success) {
+    delete prior;
+    return;
+  }
+  // S = L^-1 for C = L L^T: |S d|^2 = d^T C^-1 d.
+  prior->sqrt_information = llt.matrixL().solve(Eigen::Matrix4d::Identity());
+  s.prior_sqrt_information = prior->sqrt_information;
+  s.prior_cost.reset(new ceres::NumericDiffCostFunction<LinePrior, ceres::CENTRAL, 4, kLineAmbientSize>(prior));
+  s.has_prior = true;
+  s.usable = true;
+  s.refined = true;
+  s.covariance = covariance;
+}
+
+bool ReferenceRefiner::CountFrame() {
+  if (++frames_since_keyframe_ < options_.keyframe_interval) return false;
+  frames_since_keyframe_ = 0;
+  return true;
+}
+
+Eigen::Matrix<double, 6, 4> ReferenceRefiner::TangentBasis(int index) const {
+  Eigen::Matrix<double, kLineAmbientSize, 4, Eigen::RowMajor> j;
+  line_manifold_.PlusJacobian(lines_[index].parameters, j.data());
+  return j;
+}
+
+bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
+                                           Rigid3d* newest_cam_from_ref) {
+  keyframes_.emplace_back();
+  PoseToParameters(cam_from_ref, keyframes_.back().pose);
+  keyframes_.back().observations = observations;
+  if (options_.min_triangulation_angle_deg > 0.0) {
+    // The back-projected planes of the reference's left segment and this keyframe's
+    // (StereoPairLine with the keyframe as the second camera).
+    for (const Observation& o : observations) {
+      LineState& l = lines_[o.line];
+      if (l.usable) continue;
+      double sine = 0.0;
+      const PlueckerLine line = StereoPairLine(cam_from_ref, l.left_line, o.left_line, nullptr, nullptr, &sine);
+      if (sine >= min_triangulation_sine_) l.usable = LineToParameters(line, l.parameters);
+    }
+  }
+  // Over the window: drop the keyframe nearest its successor (camera centres; never the
+  // newest), so that the window keeps the widest spread of viewpoints -- the parallax that
+  // defines the lines -- rather than only the latest frames.
+  while (static_cast<int>(keyframes_.size()) > options_.max_keyframes) {
+    size_t drop = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k + 1 < keyframes_.size(); ++k) {
+      const double d = (PoseFromParameters(keyframes_[k].pose).Center() - PoseFromParameters(keyframes_[k + 1].pose).Center()).norm();
+      if (d < nearest) {
+        nearest = d;
+        drop = k;
+      }
+    }
+    keyframes_.erase(keyframes_.begin() + static_cast<std::ptrdiff_t>(drop));
+  }
+
+  // Lines enter with at least one keyframe observation; keyframes with at least two such lines
+  // (one line leaves a pose direction free).
+  for (LineState& l : lines_) l.observations = 0;
+  for (const Keyframe& k : keyframes_) {
+    for (const Observation& o : k.observations) lines_[o.line].observations += lines_[o.line].usable ? 1 : 0;
+  }
+  ceres::Problem problem(BorrowingProblemOptions());
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
+  problem.AddParameterBlock(reference_pose_, kPoseAmbientSize);
+  problem.SetParameterBlockConstant(reference_pose_);
+  ordering->AddElementToGroup(reference_pose_, 1);
+  size_t used = 0;
+  residuals_.clear();
+  auto add = [&](double* pose, int line, const Segment2d& left, const Segment2d& right) {
+    double* parameters = lines_[line].parameters;
+    if (!problem.HasParameterBlock(parameters)) {
+      problem.AddParameterBlock(parameters, kLineAmbientSize, &line_manifold_);
+      ordering->AddElementToGroup(parameters, 0);
+    }
+    for (int c = 0; c < 2; ++c) {
+      if (used == costs_.size()) costs_.emplace_back();
+      costs_[used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_);
+      problem.AddResidualBlock(&costs_[used], loss_.get(), pose, parameters);
+      residuals_.push_back({pose, line});
+      ++used;
+    }
+  };
+  bool newest_in = false;
+  for (Keyframe& k : keyframes_) {
+    const int seen = static_cast<int>(std::count_if(k.observations.begin(), k.observations.end(),
+                                                    [&](const Observation& o) { return lines_[o.line].observations > 0; }));
+    if (seen < 2) continue;
+    problem.AddParameterBlock(k.pose, kPoseAmbientSize, &pose_manifold_);
+    ordering->AddElementToGroup(k.pose, 1);
+    for (const Observation& o : k.observations) {
+      if (lines_[o.line].usable) add(k.pose, o.line, o.left, o.right);
+    }
+    newest_in = &k == &keyframes_.back();
+  }
+  if (!newest_in) return false;
+  for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
+    LineState& l = lines_[i];
+    if (!problem.HasParameterBlock(l.parameters)) continue;
+    add(reference_pose_, i, l.left, l.right);
+    if (l.has_prior) problem.AddResidualBlock(l.prior_cost.get(), nullptr, l.parameters);
+  }
+
+  // Keep the start: a failed solve leaves everything as it was.
+  std::vector<double> saved;
+  for (const Keyframe& k : keyframes_) saved.insert(saved.end(), k.pose, k.pose + kPoseAmbientSize);
+  for (const LineState& l : lines_) saved.insert(saved.end(), l.parameters, l.parameters + kLineAmbientSize);
+  solver_options_.linear_solver_ordering = ordering;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options_, &problem, &summary);
+  solver_options_.linear_solver_ordering.reset();
+  ++solves_;
+  bool finite = summary.IsSolutionUsable();
+  for (const Keyframe& k : keyframes_) finite = finite && Eigen::Map<const Eigen::Matrix<double, 12, 1>>(k.pose).allFinite();
+  for (const LineState& l : lines_) finite = finite && Eigen::Map<const Eigen::Matrix<double, 6, 1>>(l.parameters).allFinite();
+  if (!finite) {
+    const double* s = saved.data();
+    for (Keyframe& k : keyframes_) {
+      std::copy_n(s, kPoseAmbientSize, k.pose);
+      s += kPoseAmbientSize;
+    }
+    for (LineState& l : lines_) {
+      std::copy_n(s, kLineAmbientSize, l.parameters);
+      s += kLineAmbientSize;
+    }
+    return false;
+  }
+
+  // Each line's covariance: its block of the inverse of the problem's Gauss-Newton information
+  // J^T J (whitened residuals, tangent coordinates; the Huber weights left out), i.e. the
+  // line's uncertainty given the reference pair, marginalised over the keyframe poses. (The
+  // inverse of the line's own block alone, poses held fixed, was far too confident: NEES in
+  // the thousands on the room loop.) With the information [A B; B^T D] (A block-diagonal over
+  // the lines, D the poses') and S = D - B^T A^-1 B, the block of line i is
+  //     A_i^-1 + A_i^-1 B_i S^-1 B_i^T A_i^-1.
+  std::vector<int> line_offset(lines_.size(), -1);
+  int line_rows = 0;
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    if (problem.HasParameterBlock(lines_[i].parameters)) {
+      line_offset[i] = line_rows;
+      line_rows += 4;
+    }
+  }
+  std::vector<std::pair<const double*, int>> pose_offset;
+  int pose_rows = 0;
+  for (const Keyframe& k : keyframes_) {
+    if (problem.HasParameterBlock(k.pose)) {
+      pose_offset.emplace_back(k.pose, pose_rows);
+      pose_rows += 6;
+    }
+  }
+  auto offset_of_pose = [&](const double* pose) {
+    for (const auto& [p, o] : pose_offset) {
+      if (p == pose) return o;
+    }
+    return -1;  // the reference pair: fixed
+  };
+  Eigen::MatrixXd a_blocks = Eigen::MatrixXd::Zero(line_rows, 4);  // A_i stacked
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(line_rows, pose_rows);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(pose_rows, pose_rows);
+  Eigen::Vector2d residual;
+  Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
+  Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
+  Eigen::Matrix<double, kPoseAmbientSize, 6, Eigen::RowMajor> pose_plus;
+  for (size_t k = 0; k < residuals_.size(); ++k) {
+    const int line = residuals_[k].line;
+    const double* parameters[2] = {residuals_[k].pose, lines_[line].parameters};
+    double* jacobians[2] = {d_pose.data(), d_line.data()};
+    if (!costs_[k].Evaluate(parameters, residual.data(), jacobians)) continue;
+    const Eigen::Matrix<double, 2, 4> j_line = d_line * TangentBasis(line);
+    const int l = line_offset[line];
+    a_blocks.block<4, 4>(l, 0).noalias() += j_line.transpose() * j_line;
+    const int p = offset_of_pose(residuals_[k].pose);
+    if (p < 0) continue;
+    pose_manifold_.PlusJacobian(residuals_[k].pose, pose_plus.data());
+    const Eigen::Matrix<double, 2, 6> j_pose = d_pose * pose_plus;
+    d.block<6, 6>(p, p).noalias() += j_pose.transpose() * j_pose;
+    b.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
+  }
+  Eigen::MatrixXd a_inverse_b(line_rows, pose_rows);
+  std::vector<Eigen::Matrix4d> a_inverse(lines_.size());
+  std::vector<bool> ok(lines_.size(), false);
+  Eigen::MatrixXd schur = d;
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    const int l = line_offset[i];
+    if (l < 0) continue;
+    if (lines_[i].has_prior) {
+      // Its prior's information (at the prior's tangent; the step since is small).
+      a_blocks.block<4, 4>(l, 0).noalias() += lines_[i].prior_sqrt_information.transpose() * lines_[i].prior_sqrt_information;
+    }
+    const Eigen::LDLT<Eigen::Matrix4d> ldlt(a_blocks.block<4, 4>(l, 0));
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
+      a_inverse_b.middleRows<4>(l).setZero();
+      continue;
+    }
+    ok[i] = true;
+    a_inverse[i] = ldlt.solve(Eigen::Matrix4d::Identity());
+    a_inverse_b.middleRows<4>(l).noalias() = a_inverse[i] * b.middleRows<4>(l);
+    schur.noalias() -= b.middleRows<4>(l).transpose() * a_inverse_b.middleRows<4>(l);
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> schur_ldlt(schur);
+  if (pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive()) {
+    const Eigen::MatrixXd schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
+    for (size_t i = 0; i < lines_.size(); ++i) {
+      const int l = line_offset[i];
+      if (l < 0 || !ok[i]) continue;
+      const auto x = a_inverse_b.middleRows<4>(l);
+      lines_[i].covariance = a_inverse[i] + x * schur_inverse * x.transpose();
+      lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
+    }
+  }
+  *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
+  return true;
+}
+
+}  // namespace slt

@@ -1,0 +1,158 @@
+// Joint refinement of the reference pair's 3-D lines with keyframe poses (issue 16; beyond the
+// paper, which keeps the lines of the reference pair as its stereo pair defines them).
+//
+// The trifocal EKF (direction reference_to_current) measures every frame against the lines L_i
+// of the reference pair, triangulated from that one stereo pair (geometry/plucker.h
+// StereoPairLine). Their endpoint noise is frozen into L_i for as long as the reference is
+// kept -- hundreds of frames in a room --, so it biases every pose measured against it; a
+// white-noise filter can neither average it out nor describe it (docs/long_sequences.md).
+// While a reference pair is kept, this class stores keyframes K_k (every keyframe_interval
+// measured frames; beyond max_keyframes the one nearest its successor is dropped, which keeps the
+// widest parallax) with the filter's pose M_k = cam_from_ref and
+// the segments of the reference lines they observe, and after each new keyframe solves the
+// small bundle adjustment
+//     min over L_i, M_k   sum_i sum_{c in {left, right}} rho(|r(C_c, L_i; s_i1c)|^2)
+//                       + sum_k sum_{i seen in K_k} sum_c rho(|r(C_c M_k, L_i; s_ikc)|^2),
+// with r Taylor & Kriegman's segment residual (optim/taylor_segment_cost.h, weight 1),
+// C_left = I, C_right = the rig's right_from_left, the reference pair's pose the identity
+// (held fixed: the gauge) and the rig fixed (the scale), rho the Huber loss. Lines on the
+// 4-dof manifold, poses on SE(3) (optim/line_sfm_manifolds.h, shared with the Taylor
+// baseline). Lines the reference pair does not define (near an epipolar plane) enter once a
+// keyframe triangulates them with the reference's left image (min_triangulation_angle_deg): in
+// a room these are the horizontal lines across the view, the ones that measure the vertical
+// translation when the camera moves along the other horizontal lines.
+//
+// The tracker then measures against the refined L_i, with the reference endpoints' noise
+// replaced by the lines' own covariance C_i (the line's block of the inverse of the problem's
+// Gauss-Newton information: marginalised over the keyframe poses, the correlations between
+// lines left out), and moves the current pose to the solved newest keyframe's pose (the
+// current frame is that keyframe). Measured effect: docs/long_sequences.md.
+#pragma once
+
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+#include <ceres/solver.h>
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/options.h"
+#include "dataset/stereo_sequence.h"
+#include "geometry/line2d.h"
+#include "geometry/plucker.h"
+#include "optim/line_sfm_manifolds.h"
+#include "optim/taylor_segment_cost.h"
+
+namespace slt {
+
+// Every field's key, range and doc are declared once, in ReferenceRefinementOptionsSchema().
+struct ReferenceRefinementOptions {
+  bool enabled = false;
+  int keyframe_interval = 10;  // measured frames between keyframes
+  int max_keyframes = 8;       // keyframes kept (beyond: the one nearest its successor is dropped)
+  int max_iterations = 10;     // Levenberg-Marquardt steps per solve
+  double huber_sigma = 2.0;    // Huber threshold on the whitened segment residual
+  bool move_pose = true;       // the current pose follows the refined newest keyframe
+  // Lines the reference pair does not define (near an epipolar plane: horizontal lines of a
+  // horizontal rig) are triangulated from the reference's left image and a keyframe's once
+  // their back-projected planes meet at this angle, then refined like the others. 0 = never
+  // (the default: on the room loop, 10 trials, it did not change the ATE beyond the spread
+  // between seeds and made the covariance far too confident; docs/long_sequences.md).
+  double min_triangulation_angle_deg = 0.0;
+  // A new reference pair starts from the refined lines it shares with the previous one, moved
+  // into its frame with the current pose and kept as priors (SetCarriedLine), instead of their
+  // stereo triangulation from the new pair alone.
+  bool carry_over = true;
+
+  void Check(const std::string& where = "reference refinement options", const std::string& path = "") const;
+};
+
+const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema();
+
+class ReferenceRefiner {
+ public:
+  // `endpoint_sigma_px`: the endpoint noise per coordinate, as the measurement model's.
+  ReferenceRefiner(const ReferenceRefinementOptions& options, double endpoint_sigma_px);
+
+  void Reset(const StereoRig& rig);
+  // Forgets every keyframe and line; the new reference pair then has `lines` lines, none
+  // refined, each to be given by SetLine.
+  void StartReference(int lines);
+  // Line `index` of the reference pair: its stereo line (reference frame) and its segments in
+  // the reference pair, whose left line (normalised) is `left_line`. `usable` false: the pair
+  // does not define it; it waits for a keyframe to triangulate it.
+  void SetLine(int index, const PlueckerLine& line, bool usable, const Segment2d& left, const Segment2d& right,
+               const Eigen::Vector3d& left_line);
+
+  // Line `index` carried over from the previous reference pair: `line` (this reference's frame)
+  // with the covariance of its tangent, kept in every solve as a prior (Minus(L, line) ~
+  // N(0, covariance)), so that what earlier keyframes measured is not lost with them.
+  void SetCarriedLine(int index, const PlueckerLine& line, const Eigen::Matrix4d& covariance);
+
+  // One observation of a keyframe: reference line `line` seen with these segments; left_line
+  // is the left segment's normalised line.
+  struct Observation {
+    int line;
+    Segment2d left, right;
+    Eigen::Vector3d left_line;
+  };
+  // Counts one measured frame; true when it is to be a keyframe.
+  bool CountFrame();
+  // Adds a keyframe at `cam_from_ref` and solves. True when the solve succeeded; then
+  // *newest_cam_from_ref is the keyframe's refined pose and Line / Covariance / Refined give the
+  // refined structure.
+  bool AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
+                           Rigid3d* newest_cam_from_ref);
+
+  bool Refined(int index) const { return lines_[index].refined; }
+  PlueckerLine Line(int index) const { return LineFromParameters(lines_[index].parameters); }
+  // Covariance of the line's 4-dof tangent (LineManifold) and the 6x4 Jacobian of [n; d]
+  // with respect to it.
+  const Eigen::Matrix4d& Covariance(int index) const { return lines_[index].covariance; }
+  Eigen::Matrix<double, 6, 4> TangentBasis(int index) const;
+
+  int solves() const { return solves_; }
+
+ private:
+  struct LineState {
+    double parameters[kLineAmbientSize];
+    bool usable = false;
+    bool refined = false;
+    Segment2d left, right;  // in the reference pair
+    Eigen::Vector3d left_line;
+    Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+    int observations = 0;  // per solve: keyframe segments
+    bool has_prior = false;  // carried over: prior_cost is its prior residual
+    std::unique_ptr<ceres::CostFunction> prior_cost;
+    Eigen::Matrix4d prior_sqrt_information;
+  };
+  struct Keyframe {
+    double pose[kPoseAmbientSize];
+    std::vector<Observation> observations;
+  };
+
+  ReferenceRefinementOptions options_;
+  double sigma_px_;  // of the segment residual
+  double min_triangulation_sine_;
+  SegmentCamera cameras_[2];
+  PoseManifold pose_manifold_;
+  LineManifold line_manifold_;
+  std::unique_ptr<ceres::LossFunction> loss_;
+  ceres::Solver::Options solver_options_;
+  double reference_pose_[kPoseAmbientSize];
+
+  std::vector<LineState> lines_;
+  std::deque<Keyframe> keyframes_;
+  int frames_since_keyframe_ = 0;
+  int solves_ = 0;
+  std::deque<TaylorSegmentCost> costs_;  // reused from solve to solve (addresses kept)
+  struct ResidualRef {
+    const double* pose;
+    int line;
+  };
+  std::vector<ResidualRef> residuals_;  // of the last problem, parallel to costs_
+};
+
+}  // namespace slt

@@ -1,0 +1,132 @@
+#include "methods/trifocal_line_ekf/reference_refinement.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "geometry/se3.h"
+#include "methods/trifocal_line_ekf/line_transfer_model.h"
+
+namespace slt {
+namespace {
+
+// Lines 2-3 m ahead of the reference camera; the last one horizontal along the baseline, which
+// the stereo pair does not define.
+const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> kLines = {
+    {{-0.6, -0.5, 2.5}, {-0.6, 0.5, 2.5}},  {{0.7, -0.4, 3.0}, {0.7, 0.6, 3.0}},
+    {{-0.5, 0.4, 2.0}, {-0.5, 0.4, 3.2}},   {{0.5, -0.45, 2.2}, {0.5, -0.45, 3.4}},
+    {{-0.3, -0.3, 2.4}, {0.4, 0.3, 2.8}},   {{0.2, 0.5, 2.6}, {-0.4, -0.2, 2.3}},
+    {{-0.5, -0.35, 2.7}, {0.5, -0.35, 2.7}},
+};
+constexpr int kDegenerate = 6;
+
+PlueckerLine TrueLine(int i) {
+  PlueckerLine line;
+  line.direction = (kLines[i].second - kLines[i].first).normalized();
+  line.moment = kLines[i].first.cross(line.direction);
+  return line;
+}
+
+struct Seen {
+  Segment2d left, right;
+  Eigen::Vector3d left_line;  // normalised
+};
+
+Seen Observe(const StereoRig& rig, const Rigid3d& cam_from_ref, int i) {
+  const Rigid3d right_from_ref = rig.right_from_left * cam_from_ref;
+  const auto& [p, q] = kLines[i];
+  Seen s;
+  s.left << rig.left.Project(cam_from_ref * p), rig.left.Project(cam_from_ref * q);
+  s.right << rig.right.Project(right_from_ref * p), rig.right.Project(right_from_ref * q);
+  s.left_line = (rig.left.K().transpose() * LineFromSegment(s.left)).normalized();
+  return s;
+}
+
+Rigid3d KeyframePose(int k) {
+  // Walking forward and a little sideways and up, turning slightly.
+  Vector6d xi;
+  xi << -0.02 * k, -0.01 * k, -0.12 * k, 0.004 * k, 0.01 * k, 0.0;
+  return ExpSE3(xi);
+}
+
+double LineError(const PlueckerLine& estimate, const PlueckerLine& truth) {
+  const double sign = estimate.direction.dot(truth.direction) < 0.0 ? -1.0 : 1.0;
+  return (sign * estimate.direction - truth.direction).norm() + (sign * estimate.moment - truth.moment).norm();
+}
+
+TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulatesTheDegenerateLine) {
+  StereoRig rig;
+  ReferenceRefinementOptions options;
+  options.enabled = true;
+  options.keyframe_interval = 1;
+  options.min_triangulation_angle_deg = 2.0;
+  ReferenceRefiner refiner(options, 1.0);
+  refiner.Reset(rig);
+  refiner.StartReference(static_cast<int>(kLines.size()));
+  double start_error = 0.0;
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    const Seen s = Observe(rig, Rigid3d(), i);
+    // A stereo-like error: the line tilted and shifted a little.
+    PlueckerLine start = TrueLine(i);
+    const Rigid3d tilt = ExpSE3((Vector6d() << 0.01, -0.02, 0.03, 0.01, 0.005, -0.01).finished());
+    start = TransformPluecker(tilt, start);
+    start_error += LineError(start, TrueLine(i));
+    refiner.SetLine(i, start, i != kDegenerate, s.left, s.right, s.left_line);
+  }
+  Rigid3d newest;
+  bool solved = false;
+  for (int k = 1; k <= 4; ++k) {
+    ASSERT_TRUE(refiner.CountFrame());
+    std::vector<ReferenceRefiner::Observation> observations;
+    for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+      const Seen s = Observe(rig, KeyframePose(k), i);
+      observations.push_back({i, s.left, s.right, s.left_line});
+    }
+    const Rigid3d guess = ExpSE3((Vector6d() << 0.01, -0.01, 0.005, 0.002, 0.0, -0.003).finished()) * KeyframePose(k);
+    solved = refiner.AddKeyframeAndSolve(guess, observations, &newest);
+    ASSERT_TRUE(solved) << "keyframe " << k;
+  }
+  // Noise-free segments: the structure and the newest pose are recovered.
+  EXPECT_LT(LogSE3(newest * KeyframePose(4).Inverse()).norm(), 1e-6);
+  double end_error = 0.0;
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    ASSERT_TRUE(refiner.Refined(i)) << "line " << i;
+    EXPECT_LT(LineError(refiner.Line(i), TrueLine(i)), 1e-6) << "line " << i;
+    end_error += LineError(refiner.Line(i), TrueLine(i));
+    EXPECT_TRUE(refiner.Covariance(i).allFinite());
+    EXPECT_GT(refiner.Covariance(i).determinant(), 0.0);
+  }
+  EXPECT_GT(start_error, 1e-2);
+  EXPECT_LT(end_error, 1e-4 * start_error);
+}
+
+TEST(ReferenceRefinerTest, KeyframesEveryIntervalFrames) {
+  ReferenceRefinementOptions options;
+  options.keyframe_interval = 3;
+  ReferenceRefiner refiner(options, 1.0);
+  refiner.Reset(StereoRig());
+  refiner.StartReference(0);
+  std::vector<bool> keyframes;
+  for (int f = 0; f < 7; ++f) keyframes.push_back(refiner.CountFrame());
+  EXPECT_EQ(keyframes, (std::vector<bool>{false, false, true, false, false, true, false}));
+}
+
+TEST(ReferenceRefinerTest, RefinementNeedsTheReferenceToCurrentDirectionAndPropagatedNoise) {
+  LineTransferOptions options;
+  options.refinement.enabled = true;
+  EXPECT_NO_THROW(options.Check());
+  options.direction = TransferDirection::kCurrentToReference;
+  EXPECT_THROW(options.Check(), std::exception);
+  options.direction = TransferDirection::kReferenceToCurrent;
+  options.noise = MeasurementNoise::kFixed;
+  EXPECT_THROW(options.Check(), std::exception);
+  options.refinement.enabled = false;
+  EXPECT_NO_THROW(options.Check());
+  options.refinement.keyframe_interval = 0;
+  EXPECT_THROW(options.Check(), std::exception);
+}
+
+}  // namespace
+}  // namespace slt
