@@ -17,7 +17,7 @@ struct Described {
 
 Described DetectAndDescribe(const cv::Mat& image) {
   const DetectionOptions options;
-  std::unique_ptr<LineDetector> detector = MakeLineDetector(options.detector);
+  std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
   MsldExtractor msld;
   msld.SetImage(image);
   Described out;
