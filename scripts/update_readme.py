@@ -209,6 +209,25 @@ def loop_table(r):
     return "\n" + "\n".join(lines) + "\n"
 
 
+LONG_RUNS = (("long_room", "room loop, 1428 frames"), ("long_corridor", "corridor walk, 301 frames"),
+             ("long_corridor_slow", "corridor walk, 1201 frames"))
+
+
+def long_runs_table(r):
+    """ATE and largest error in % of the path, NEES: every method of the long-run configs."""
+    lines = ["| run | endpoints | method | ATE | largest error | NEES (6 dof) |", "|---|---|---|---:|---:|---:|"]
+    for experiment, title in LONG_RUNS:
+        for row in r.summary(experiment):
+            if row["method"].startswith("refinement "):
+                continue  # the ablation rows of long_room: docs/long_sequences.md
+            path = float(row["path_length_m_mean"])
+            ate, largest = float(row["ate_trans_m_mean"]), float(row["max_trans_err_m_mean"])
+            lines.append("| %s (%d trials) | %s | `%s` | %s (%s %%) | %s (%s %%) | %s |" % (
+                title, int(row["trials"]), row["noise.endpoints"], row["method"], mm(ate), sig(100 * ate / path, 2),
+                mm(largest), sig(100 * largest / path, 2), sig(float(row["nees_mean"]), 2)))
+    return "\n" + "\n".join(lines) + "\n"
+
+
 FEATURE_LINES = (2, 4, 10, 20, 40)
 
 
@@ -284,6 +303,7 @@ GENERATORS = {
     "table1_machine": table1_machine,
     "loop_path": loop_path,
     "loop_table": loop_table,
+    "long_runs_table": long_runs_table,
     "feature_count_table": feature_count_table,
     "faithful_fixed_r": faithful_fixed_r,
     "fixed_endpoints": endpoints_comparison("fixed"),
