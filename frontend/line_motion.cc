@@ -24,13 +24,10 @@ void RightPlaneInLeft(const StereoRig& rig, const Segment2d& right, Eigen::Vecto
   *d = n_right.dot(rig.right_from_left.translation);
 }
 
-}  // namespace
-
-bool StereoSegmentEndpoints(const StereoRig& rig, const Segment2d& left, const Segment2d& right,
-                            Eigen::Vector3d* first, Eigen::Vector3d* second) {
-  Eigen::Vector3d n;
-  double d;
-  RightPlaneInLeft(rig, right, &n, &d);
+// The points of the left segment's endpoints on the plane n^T X + d = 0 (left frame), as
+// StereoSegmentEndpoints states.
+bool EndpointsOnPlane(const StereoRig& rig, const Segment2d& left, const Eigen::Vector3d& n, double d,
+                      Eigen::Vector3d* first, Eigen::Vector3d* second) {
   for (int e = 0; e < 2; ++e) {
     const Eigen::Vector2d xy = rig.left.PixelToNormalized(left.segment<2>(2 * e));
     const Eigen::Vector3d ray(xy.x(), xy.y(), 1.0);
@@ -40,6 +37,16 @@ bool StereoSegmentEndpoints(const StereoRig& rig, const Segment2d& left, const S
     (e == 0 ? *first : *second) = point;
   }
   return true;
+}
+
+}  // namespace
+
+bool StereoSegmentEndpoints(const StereoRig& rig, const Segment2d& left, const Segment2d& right,
+                            Eigen::Vector3d* first, Eigen::Vector3d* second) {
+  Eigen::Vector3d n;
+  double d;
+  RightPlaneInLeft(rig, right, &n, &d);
+  return EndpointsOnPlane(rig, left, n, d, first, second);
 }
 
 bool PredictStereoLineMotion(const StereoRig& rig, const Rigid3d& next_from_previous, const Segment2d& left,
@@ -56,7 +63,7 @@ bool PredictStereoLineMotion(const StereoRig& rig, const Rigid3d& next_from_prev
   const double d_left_in_right = n_left.dot(left_from_right.translation);
   if (n_left.cross(n_right_in_left).norm() < min_plane_sine) return false;
   Eigen::Vector3d first, second;
-  if (!StereoSegmentEndpoints(rig, left, right, &first, &second)) return false;
+  if (!EndpointsOnPlane(rig, left, n_right_in_left, d_right_in_left, &first, &second)) return false;
   if (depth) *depth = 0.5 * (first.z() + second.z());
   const Rigid3d right_motion = right_from_left * next_from_previous * left_from_right;
   maps->left = PlaneHomography(rig.left, next_from_previous, n_right_in_left, d_right_in_left);
