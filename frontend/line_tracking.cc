@@ -54,6 +54,15 @@ struct LineEstimator : FixedSampleSize<2> {
   }
 };
 
+// The derivative (du, dv) of a CV_16SC2 image, bilinear between pixel (u0, v0) and its
+// neighbours (which must be inside the image) at the fractions (fu, fv).
+inline Eigen::Vector2f BilinearDerivative(const cv::Mat& derivatives, int u0, int v0, float fu, float fv) {
+  const short* r0 = derivatives.ptr<short>(v0) + 2 * u0;
+  const short* r1 = r0 + derivatives.step1();
+  const float w00 = (1 - fu) * (1 - fv), w01 = fu * (1 - fv), w10 = (1 - fu) * fv, w11 = fu * fv;
+  return {w00 * r0[0] + w01 * r0[2] + w10 * r1[0] + w11 * r1[2], w00 * r0[1] + w01 * r0[3] + w10 * r1[1] + w11 * r1[3]};
+}
+
 // The derivative (du, dv) at a sub-pixel position of a CV_16SC2 image, bilinear, clamped to
 // the image.
 inline Eigen::Vector2f SampleDerivative(const cv::Mat& derivatives, float u, float v) {
@@ -61,11 +70,7 @@ inline Eigen::Vector2f SampleDerivative(const cv::Mat& derivatives, float u, flo
   u = std::clamp(u, 0.0f, static_cast<float>(w - 1));
   v = std::clamp(v, 0.0f, static_cast<float>(h - 1));
   const int u0 = std::min(static_cast<int>(u), w - 2), v0 = std::min(static_cast<int>(v), h - 2);
-  const float fu = u - u0, fv = v - v0;
-  const short* r0 = derivatives.ptr<short>(v0) + 2 * u0;
-  const short* r1 = derivatives.ptr<short>(v0 + 1) + 2 * u0;
-  const float w00 = (1 - fu) * (1 - fv), w01 = fu * (1 - fv), w10 = (1 - fu) * fv, w11 = fu * fv;
-  return {w00 * r0[0] + w01 * r0[2] + w10 * r1[0] + w11 * r1[2], w00 * r0[1] + w01 * r0[3] + w10 * r1[1] + w11 * r1[3]};
+  return BilinearDerivative(derivatives, u0, v0, u - u0, v - v0);
 }
 
 // OpenCV's Scharr derivatives in the flow pyramid are 32 x the grey-level gradient.
@@ -107,12 +112,8 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
       for (int k = 0; k < width; ++k) {
         const float u = u_first + k * nx, v = v_first + k * ny;
         const int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
-        const float fu = u - u0, fv = v - v0;
-        const short* r0 = derivatives.ptr<short>(v0) + 2 * u0;
-        const short* r1 = r0 + derivatives.step1();
-        const float w00 = (1 - fu) * (1 - fv), w01 = fu * (1 - fv), w10 = (1 - fu) * fv, w11 = fu * fv;
-        g[k] = gx * (w00 * r0[0] + w01 * r0[2] + w10 * r1[0] + w11 * r1[2]) +
-               gy * (w00 * r0[1] + w01 * r0[3] + w10 * r1[1] + w11 * r1[3]);
+        const Eigen::Vector2f grad = BilinearDerivative(derivatives, u0, v0, u - u0, v - v0);
+        g[k] = gx * grad.x() + gy * grad.y();
       }
     } else {
       for (int k = 0; k < width; ++k) {
