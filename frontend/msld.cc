@@ -52,6 +52,12 @@ bool MsldExtractor::Compute(const Segment2d& segment, MsldDescriptor* descriptor
   const bool all_inside = inside(u00, v00) && inside(u00 + along * dx, v00 + along * dy) &&
                           inside(u00 + across * nx, v00 + across * ny) &&
                           inside(u00 + along * dx + across * nx, v00 + along * dy + across * ny);
+  // I(u0 + fu, v0 + fv), bilinear (pixel (u0, v0) and its neighbours inside the image).
+  const auto bilinear = [&](int u0, int v0, float fu, float fv) {
+    const float* p0 = image + v0 * stride + u0;
+    const float* p1 = p0 + stride;
+    return (1 - fv) * ((1 - fu) * p0[0] + fu * p0[1]) + fv * ((1 - fu) * p1[0] + fu * p1[1]);
+  };
   for (int r = 0; r < rows; ++r) {
     const float base_u = static_cast<float>(a.x()) + (r - 3) * dx - 23 * nx;
     const float base_v = static_cast<float>(a.y()) + (r - 3) * dy - 23 * ny;
@@ -60,10 +66,7 @@ bool MsldExtractor::Compute(const Segment2d& segment, MsldDescriptor* descriptor
       for (int k = 0; k < kCols; ++k) {
         const float u = base_u + k * nx, v = base_v + k * ny;
         const int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
-        const float fu = u - u0, fv = v - v0;
-        const float* p0 = image + v0 * stride + u0;
-        const float* p1 = p0 + stride;
-        out[k] = (1 - fv) * ((1 - fu) * p0[0] + fu * p0[1]) + fv * ((1 - fu) * p1[0] + fu * p1[1]);
+        out[k] = bilinear(u0, v0, u - u0, v - v0);
       }
       continue;
     }
@@ -74,10 +77,7 @@ bool MsldExtractor::Compute(const Segment2d& segment, MsldDescriptor* descriptor
       int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
       u0 = u0 > w - 2 ? w - 2 : u0;
       v0 = v0 > h - 2 ? h - 2 : v0;
-      const float fu = u - u0, fv = v - v0;
-      const float* p0 = image + v0 * stride + u0;
-      const float* p1 = p0 + stride;
-      out[k] = (1 - fv) * ((1 - fu) * p0[0] + fu * p0[1]) + fv * ((1 - fu) * p1[0] + fu * p1[1]);
+      out[k] = bilinear(u0, v0, u - u0, v - v0);
     }
   }
 
