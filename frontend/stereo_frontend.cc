@@ -83,7 +83,7 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
     segments_[c].resize(n);
     maps_[c].assign(n, Eigen::Matrix3d::Identity());
   }
-  int unplaced = 0;
+  unplaced_.clear();
   for (int i = 0; i < n; ++i) {
     const LiveLine& line = live_[i];
     segments_[0][i] = line.left;
@@ -100,20 +100,19 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
       maps.left = TranslationMap(line.shift[0]);
       maps.right = TranslationMap(line.shift[1]);
     } else {
-      ++unplaced;
+      unplaced_.push_back(i);
       continue;
     }
     maps_[0][i] = maps.left;
     maps_[1][i] = maps.right;
   }
-  if (use_camera && unplaced > 0) {
+  if (use_camera && !unplaced_.empty()) {
     StereoLineMaps scene = RotationOnlyMaps(rig_, *predicted_motion);
     if (!depths_.empty()) {
       std::nth_element(depths_.begin(), depths_.begin() + depths_.size() / 2, depths_.end());
       scene = FrontoParallelMaps(rig_, *predicted_motion, depths_[depths_.size() / 2]);
     }
-    for (int i = 0; i < n; ++i) {
-      if (from_prediction_[i] || (motion.seed != FlowSeed::kNone && live_[i].has_shift)) continue;
+    for (const int i : unplaced_) {
       maps_[0][i] = scene.left;
       maps_[1][i] = scene.right;
     }

@@ -133,6 +133,7 @@ class StereoFrontEnd {
   std::vector<char> ok_[2];
   std::vector<Eigen::Matrix3d> maps_[2];
   std::vector<char> from_prediction_;
+  std::vector<int> unplaced_;  // lines with neither a camera nor an image seed
   std::vector<double> depths_;
   std::vector<LostLine> lost_;
   std::vector<FrameMatchQuery> queries_;
