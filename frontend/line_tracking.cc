@@ -220,8 +220,6 @@ void LineFlowTracker::RunLucasKanade(const ImagePyramid& previous, const ImagePy
 void LineFlowTracker::Flow(const ImagePyramid& previous, const ImagePyramid& next,
                            const std::vector<Segment2d>& segments) {
   SamplePoints(segments);
-  tracked_points_.clear();
-  status_.clear();
   RunLucasKanade(previous, next, options_.pyramid_levels, 0);
 }
 
