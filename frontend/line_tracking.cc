@@ -92,6 +92,8 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   const double margin = std::min(kSnapEndMarginPx, 0.25 * length), span = length - 2.0 * margin;
   const int places = std::clamp(static_cast<int>(std::lround(span / options.snap_spacing_px)), 1, options.snap_max_places);
   const int width = 2 * radius + 3;  // offsets -radius-1 .. radius+1
+  // Place m's distance along the segment from its first endpoint.
+  const auto along = [&](int m) { return margin + (m + 0.5) * span / places; };
   // profiles[m * width + o + radius + 1] = g_m(o), grey levels per px.
   std::vector<float>& profiles = workspace->profiles;
   std::vector<Eigen::Vector2d>* edge_points = &workspace->edge_points;
@@ -102,7 +104,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   const float max_u = static_cast<float>(derivatives.cols - 2), max_v = static_cast<float>(derivatives.rows - 2);
   double polarity = 0.0;
   for (int m = 0; m < places; ++m) {
-    const Eigen::Vector2d x = a + (margin + (m + 0.5) * span / places) * d;
+    const Eigen::Vector2d x = a + along(m) * d;
     const float u_first = static_cast<float>(x.x()) - (radius + 1) * nx, v_first = static_cast<float>(x.y()) - (radius + 1) * ny;
     const float u_last = u_first + (width - 1) * nx, v_last = v_first + (width - 1) * ny;
     float* g = &profiles[static_cast<size_t>(m) * width];
@@ -135,7 +137,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
     const float gm = sign * g[best - 1], g0 = sign * g[best], gp = sign * g[best + 1];
     const float curvature = gm - 2.0f * g0 + gp;
     const double delta = curvature < 0.0f ? std::clamp(0.5f * (gm - gp) / curvature, -0.5f, 0.5f) : 0.0f;
-    edge_points->push_back(a + (margin + (m + 0.5) * span / places) * d + (best + delta) * n);
+    edge_points->push_back(a + along(m) * d + (best + delta) * n);
   }
   const int needed = std::max(3, static_cast<int>(std::ceil(options.snap_min_fraction * places)));
   if (static_cast<int>(edge_points->size()) < needed) return false;
@@ -158,7 +160,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   // refitted line was off by more than the radius there counts, once the fit is right).
   const Eigen::Vector2d e = (q - p).normalized(), en(-e.y(), e.x());
   const auto on_edge = [&](int m) {
-    const Eigen::Vector2d x = p + (margin + (m + 0.5) * span / places) * e;
+    const Eigen::Vector2d x = p + along(m) * e;
     float g[3];
     for (int o = -1; o <= 1; ++o) {
       const Eigen::Vector2f grad = SampleDerivative(derivatives, static_cast<float>(x.x() + o * en.x()),
@@ -172,8 +174,8 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   while (last > first && !on_edge(last)) --last;
   if (first > last) return false;
   const double slack = margin + 0.5 * span / places, extent = (q - p).norm();
-  const double t0 = std::max(0.0, margin + (first + 0.5) * span / places - slack);
-  const double t1 = std::min(extent, margin + (last + 0.5) * span / places + slack);
+  const double t0 = std::max(0.0, along(first) - slack);
+  const double t1 = std::min(extent, along(last) + slack);
   q = p + t1 * e;
   p = p + t0 * e;
   *segment = Segment2d(p.x(), p.y(), q.x(), q.y());
