@@ -68,10 +68,11 @@ void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right
       const Eigen::Vector3d ll = NormalizedLineFromPixelLine(rig_.left, LineFromSegment(frame.left[i].segment));
       const Eigen::Vector3d rl = NormalizedLineFromPixelLine(rig_.right, LineFromSegment(frame.right[i].segment));
       if (front_end.matcher().geometry().EpipolarSine(frame.left[i].segment) < std::sin(5.0 * M_PI / 180.0)) continue;
-      reference_[frame.left[i].id] = StereoPairLine(rig_.right_from_left, ll, rl);
+      ReferenceLine& reference = reference_[frame.left[i].id];
+      reference.line = StereoPairLine(rig_.right_from_left, ll, rl);
       Eigen::Vector3d a, b;
       if (StereoSegmentEndpoints(rig_, frame.left[i].segment, frame.right[i].segment, &a, &b)) {
-        reference_endpoints_[frame.left[i].id] = {a, b};
+        reference.ends = std::make_pair(a, b);
       }
     }
   }
@@ -91,7 +92,7 @@ void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right
     if (it == reference_.end()) continue;
     for (int c = 0; c < 2; ++c) {
       const PinholeCamera& camera = c == 0 ? rig_.left : rig_.right;
-      const Eigen::Vector3d normalized = TransformPluecker(c == 0 ? left_from_world : right_from_world, it->second).moment;
+      const Eigen::Vector3d normalized = TransformPluecker(c == 0 ? left_from_world : right_from_world, it->second.line).moment;
       const Eigen::Vector3d pixel_line = PixelLineFromNormalizedLine(camera, normalized);
       const Segment2d& tracked = c == 0 ? frame.left[i].segment : frame.right[i].segment;
       const Eigen::Vector2d d = (tracked.tail<2>() - tracked.head<2>()).normalized();
@@ -99,10 +100,9 @@ void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right
       sum += std::acos(std::min(1.0, std::abs(d.dot(e)))) * 180.0 / M_PI;
       ++count;
       if (picture) {
-        const auto ends = reference_endpoints_.find(frame.left[i].id);
+        const auto& ends = it->second.ends;
         Segment2d s;
-        if (ends != reference_endpoints_.end() &&
-            ProjectSegment(c == 0 ? left_from_world : right_from_world, camera, ends->second, &s) &&
+        if (ends && ProjectSegment(c == 0 ? left_from_world : right_from_world, camera, *ends, &s) &&
             ClipSegmentToImage(rig_.width, rig_.height, &s)) {
           DrawSegment(&images[c], s, kReprojected);
         }

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <map>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,12 @@ class FrontEndPictures {
   std::string dir_, partial_;
   StereoRig rig_;
   int frames_;
-  std::map<std::int64_t, PlueckerLine> reference_;  // in the world = left camera at the first frame
-  // The first pair's left endpoints on those lines, in the world (lines with both in front).
-  std::map<std::int64_t, std::pair<Eigen::Vector3d, Eigen::Vector3d>> reference_endpoints_;
+  struct ReferenceLine {
+    PlueckerLine line;  // in the world = left camera at the first frame
+    // The first pair's left endpoints on the line, in the world (when both are in front).
+    std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> ends;
+  };
+  std::map<std::int64_t, ReferenceLine> reference_;
   struct Point {
     int frame;
     double angle_deg;
