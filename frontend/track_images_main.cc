@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
     int counts[kNumTrackingStatuses] = {};
     ProgressBar progress;
     int detection_frames = 0;
-    FrontEndStageTimes steady, detecting, total;
+    FrontEndStageTimes steady, detecting;
     int steady_frames = 0;
     double tracker_seconds = 0.0, read_seconds = 0.0;
     const auto start = std::chrono::steady_clock::now();
@@ -118,7 +118,6 @@ int main(int argc, char** argv) {
       const ImageTrackingStep step = image_tracker.Step(images.left, images.right, images.time);
       const FrontEndFrameStats& stats = front_end.last_stats();
       tracker_seconds += step.tracker_seconds;
-      total += stats.times;
       if (stats.detected) {
         ++detection_frames;
         detecting += stats.times;
@@ -152,13 +151,15 @@ int main(int argc, char** argv) {
     const int frames = end - first;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto ms = [](double seconds, int n) { return n > 0 ? 1e3 * seconds / n : 0.0; };
+    const auto count = [&counts](TrackingStatus status) { return counts[static_cast<int>(status)]; };
     std::fprintf(stderr,
                  "track_images: %s: %d frames: %d tracking, %d degraded, %d new reference, %d lost; detection on %d frames\n"
                  "  per steady frame:    track %.2f ms, filter %.2f ms (front end %.2f ms)\n"
                  "  per detection frame: detect %.2f ms, describe %.2f ms, match %.2f ms, track %.2f ms, filter %.2f ms "
                  "(front end %.2f ms)\n"
                  "  tracker %.2f ms per frame, image reading %.2f ms per frame; %.1f fps overall\n",
-                 method.c_str(), frames, counts[0], counts[3], counts[1], counts[2], detection_frames,
+                 method.c_str(), frames, count(TrackingStatus::kTracking), count(TrackingStatus::kDegraded),
+                 count(TrackingStatus::kNewReference), count(TrackingStatus::kLost), detection_frames,
                  ms(steady.track, steady_frames), ms(steady.filter, steady_frames), ms(steady.Total(), steady_frames),
                  ms(detecting.detect, detection_frames), ms(detecting.describe, detection_frames),
                  ms(detecting.match, detection_frames), ms(detecting.track, detection_frames),

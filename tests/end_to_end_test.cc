@@ -14,6 +14,7 @@
 #include "common/csv.h"
 #include "common/json_reader.h"
 #include "dataset/trajectory.h"
+#include "frontend/frontend_audit.h"
 
 namespace slt {
 namespace {
@@ -179,7 +180,7 @@ double AteRmse(const std::string& metrics_path) {
   return ReadJsonFile(metrics_path).at("ate_trans_m").at("rmse").get<double>();
 }
 
-// Issue 18: simulate --images -> track_images -> evaluate on a short rendered room loop, against
+// Issue 18: simulate --images -> track_images -> evaluate on a rendered room loop, against
 // the same tracker on the perfect observations of the same sequence (seq.json: the visible
 // ground-truth edges, noise-free); the saved observations replay with `track` to the same
 // trajectory. docs/frontend.md gives the numbers measured on longer runs.
@@ -188,12 +189,7 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
     // The room loop of results/frontend (frontend_audit.h RenderedRoomConfig(200, true): EuRoC's
     // image size, focal length and baseline, 1.1 cm per frame), the setting docs/frontend.md
     // measures the front end on.
-    std::ofstream(Path("sim.json")) << R"({"frames": 200, "scene": {"type": "room"}, "motion": {"type": "loop"},
-        "noise": {"endpoint_px": 0}, "observation": {"clip_to_image": true, "occlusion": true},
-        "rig": {"width": 752, "height": 480,
-                "left": {"fx": 458.654, "fy": 458.654, "cx": 367.215, "cy": 248.375},
-                "right": {"fx": 458.654, "fy": 458.654, "cx": 367.215, "cy": 248.375},
-                "right_from_left": {"R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [-0.11, 0, 0]}}})";
+    std::ofstream(Path("sim.json")) << RenderedRoomConfig(200, true).dump();
   }
   Result r = RunCommand(Bin("simulate") + " " + Path("sim.json") + " --out " + Path("run") + " --images --threads 1");
   ASSERT_EQ(r.exit_code, 0) << r.output;
