@@ -117,7 +117,9 @@ class ReferenceRefiner {
 
  private:
   struct LineState {
-    double parameters[kLineAmbientSize];
+    // Zero until set: a line the reference pair does not define keeps no parameters, and the
+    // solve's finiteness check reads every line's.
+    double parameters[kLineAmbientSize] = {};
     bool usable = false;
     bool refined = false;
     Segment2d left, right;  // in the reference pair
