@@ -126,8 +126,7 @@ class ReferenceRefiner {
     Eigen::Vector3d left_line;
     Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
     int observations = 0;  // per solve: keyframe segments
-    bool has_prior = false;  // carried over: prior_cost is its prior residual
-    std::unique_ptr<ceres::CostFunction> prior_cost;
+    std::unique_ptr<ceres::CostFunction> prior_cost;  // carried over: its prior residual (else null)
     Eigen::Matrix4d prior_sqrt_information;
   };
   struct Keyframe {
