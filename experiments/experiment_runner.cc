@@ -6,8 +6,8 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
+#include "common/machine_info.h"
 #include "common/parallel.h"
 
 #include "common/random.h"
@@ -239,7 +239,7 @@ ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& op
 
   ExperimentRun run;
   run.jobs_total = all_jobs.size();
-  int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  int threads = options.threads > 0 ? options.threads : CpuCores();
   run.trials.resize(jobs.size());
 
   // Jobs already run (--resume) are filled in; the others are run.

@@ -199,12 +199,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
       const Eigen::Matrix<double, 4, 4> move = pseudo_inverse * transform * old.line_d_tangent;
       const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
       refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
-      if (!refiner_->Refined(index)) continue;
-      ReferenceLine& line = reference_lines_[i];
-      line.line = refiner_->Line(index);
-      line.line_d_tangent = basis;
-      line.tangent_covariance = refiner_->Covariance(index);
-      line.refined = true;
+      if (refiner_->Refined(index)) TakeRefinedLine(index, basis);
     }
   }
   matches_.clear();
@@ -401,6 +396,14 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
   return true;
 }
 
+void LineTransferModel::TakeRefinedLine(int index, const Eigen::Matrix<double, 6, 4>& tangent_basis) {
+  ReferenceLine& line = reference_lines_[index];
+  line.line = refiner_->Line(index);
+  line.line_d_tangent = tangent_basis;
+  line.tangent_covariance = refiner_->Covariance(index);
+  line.refined = true;
+}
+
 bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
                                         Rigid3d* refined_cam_from_ref) {
   if (!refiner_) return false;
@@ -420,14 +423,8 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
   }
   Rigid3d refined;
   if (!refiner_->AddKeyframeAndSolve(cam_from_ref, keyframe_observations_, &refined)) return false;
-  for (size_t i = 0; i < reference_lines_.size(); ++i) {
-    const int index = static_cast<int>(i);
-    if (!refiner_->Refined(index)) continue;
-    ReferenceLine& line = reference_lines_[i];
-    line.line = refiner_->Line(index);
-    line.line_d_tangent = refiner_->TangentBasis(index);
-    line.tangent_covariance = refiner_->Covariance(index);
-    line.refined = true;
+  for (int index = 0; index < static_cast<int>(reference_lines_.size()); ++index) {
+    if (refiner_->Refined(index)) TakeRefinedLine(index, refiner_->TangentBasis(index));
   }
   *refined_cam_from_ref = refined;
   if (options_.refinement.move_pose) last_cam_from_ref_ = refined;

@@ -143,6 +143,9 @@ class LineTransferModel final : public FeatureModel {
 
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
+  // Reference line `index` becomes the refiner's refined line, with the covariance of its
+  // tangent and that tangent's basis (at the line, LineManifold).
+  void TakeRefinedLine(int index, const Eigen::Matrix<double, 6, 4>& tangent_basis);
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;
   static int CountUsable(const std::vector<StereoLine>& lines);
   // True if the left segment lies within min_epipolar_angle_deg of its epipolar line.

@@ -85,7 +85,6 @@ void ReferenceRefiner::SetLine(int index, const PlueckerLine& line, bool usable,
   s.left_line = left_line;
   s.usable = usable && LineToParameters(line, s.parameters);
   s.refined = false;
-  s.has_prior = false;
   s.prior_cost.reset();
   s.left = left;
   s.right = right;
@@ -103,7 +102,6 @@ void ReferenceRefiner::SetCarriedLine(int index, const PlueckerLine& line, const
   prior->sqrt_information = llt.matrixL().solve(Eigen::Matrix4d::Identity());
   s.prior_sqrt_information = prior->sqrt_information;
   s.prior_cost.reset(new ceres::NumericDiffCostFunction<LinePrior, ceres::CENTRAL, 4, kLineAmbientSize>(prior));
-  s.has_prior = true;
   s.usable = true;
   s.refined = true;
   s.covariance = covariance;
@@ -197,7 +195,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     LineState& l = lines_[i];
     if (!problem.HasParameterBlock(l.parameters)) continue;
     add(reference_pose_, i, l.left, l.right);
-    if (l.has_prior) problem.AddResidualBlock(l.prior_cost.get(), nullptr, l.parameters);
+    if (l.prior_cost) problem.AddResidualBlock(l.prior_cost.get(), nullptr, l.parameters);
   }
 
   // Keep the start: a failed solve leaves everything as it was.
@@ -283,7 +281,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   for (size_t i = 0; i < lines_.size(); ++i) {
     const int l = line_offset[i];
     if (l < 0) continue;
-    if (lines_[i].has_prior) {
+    if (lines_[i].prior_cost) {
       // Its prior's information (at the prior's tangent; the step since is small).
       a_blocks.block<4, 4>(l, 0).noalias() += lines_[i].prior_sqrt_information.transpose() * lines_[i].prior_sqrt_information;
     }

@@ -117,15 +117,16 @@ class ReferenceRefiner {
 
  private:
   struct LineState {
-    double parameters[kLineAmbientSize];
+    // Zero until set: a line the reference pair does not define keeps no parameters, and the
+    // solve's finiteness check reads every line's.
+    double parameters[kLineAmbientSize] = {};
     bool usable = false;
     bool refined = false;
     Segment2d left, right;  // in the reference pair
     Eigen::Vector3d left_line;
     Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
     int observations = 0;  // per solve: keyframe segments
-    bool has_prior = false;  // carried over: prior_cost is its prior residual
-    std::unique_ptr<ceres::CostFunction> prior_cost;
+    std::unique_ptr<ceres::CostFunction> prior_cost;  // carried over: its prior residual (else null)
     Eigen::Matrix4d prior_sqrt_information;
   };
   struct Keyframe {
