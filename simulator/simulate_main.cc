@@ -16,11 +16,11 @@
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/file_io.h"
 #include "common/json_reader.h"
+#include "common/machine_info.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
 #include "render/sequence_renderer.h"
@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
       if (images) {
         // One OpenCV thread per render thread: the frames are the parallel work.
         cv::setNumThreads(1);
-        const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        const int workers = threads > 0 ? threads : std::max(1, CpuCores());
         WriteEurocSequence(out_dir, result, config, workers, [](int done, int total) {
           std::fprintf(stderr, "\rsimulate: rendering frame %d/%d", done, total);
           if (done == total) std::fprintf(stderr, "\n");
