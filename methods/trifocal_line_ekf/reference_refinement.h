@@ -142,7 +142,9 @@ class ReferenceRefiner {
   LineManifold line_manifold_;
   std::unique_ptr<ceres::LossFunction> loss_;
   ceres::Solver::Options solver_options_;
-  double reference_pose_[kPoseAmbientSize];
+  // The pose blocks of the last solve: the reference pair's, then the keyframes' in window order
+  // (one buffer, so that Ceres's address order is this order).
+  std::vector<double> pose_parameters_;
 
   std::vector<LineState> lines_;
   std::deque<Keyframe> keyframes_;
