@@ -34,7 +34,9 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
       OptionSchema<O>()
           .Field("enabled", &O::enabled,
                  "refine the reference lines jointly with keyframe poses (direction reference_to_current only)")
-          .Field("keyframe_interval", &O::keyframe_interval, AtLeast(1), "measured frames between keyframes")
+          .Field("keyframe_interval", &O::keyframe_interval, AtLeast(1), "measured frames between keyframes (at least)")
+          .Field("keyframe_min_distance_m", &O::keyframe_min_distance_m, AtLeast(0.0),
+                 "a keyframe also needs the camera this far from the previous keyframe (0 = by count only)")
           .Field("max_keyframes", &O::max_keyframes, AtLeast(1), "keyframes kept in the refinement window")
           .Field("max_iterations", &O::max_iterations, AtLeast(1), "Levenberg-Marquardt steps per refinement")
           .Field("huber_sigma", &O::huber_sigma, Positive(), "Huber threshold of the segment residual (sigmas)")
@@ -109,8 +111,12 @@ void ReferenceRefiner::SetCarriedLine(int index, const PlueckerLine& line, const
   s.covariance = covariance;
 }
 
-bool ReferenceRefiner::CountFrame() {
+bool ReferenceRefiner::CountFrame(const Rigid3d& cam_from_ref) {
   if (++frames_since_keyframe_ < options_.keyframe_interval) return false;
+  if (options_.keyframe_min_distance_m > 0.0) {
+    const Eigen::Vector3d last = keyframes_.empty() ? Eigen::Vector3d::Zero() : PoseFromParameters(keyframes_.back().pose).Center();
+    if ((cam_from_ref.Center() - last).norm() < options_.keyframe_min_distance_m) return false;
+  }
   frames_since_keyframe_ = 0;
   return true;
 }

@@ -7,7 +7,7 @@
 // kept -- hundreds of frames in a room --, so it biases every pose measured against it; a
 // white-noise filter can neither average it out nor describe it (docs/long_sequences.md).
 // While a reference pair is kept, this class stores keyframes K_k (every keyframe_interval
-// measured frames; beyond max_keyframes the one nearest its successor is dropped, which keeps the
+// measured frames, once the camera is keyframe_min_distance_m from the last one; beyond max_keyframes the one nearest its successor is dropped, which keeps the
 // widest parallax) with the filter's pose M_k = cam_from_ref and
 // the segments of the reference lines they observe, and after each new keyframe solves the
 // small bundle adjustment
@@ -50,7 +50,11 @@ namespace slt {
 // Every field's key, range and doc are declared once, in ReferenceRefinementOptionsSchema().
 struct ReferenceRefinementOptions {
   bool enabled = false;
-  int keyframe_interval = 10;  // measured frames between keyframes
+  int keyframe_interval = 10;  // measured frames between keyframes (at least)
+  // A keyframe also needs its camera centre this far from the previous keyframe's (the
+  // reference pair's for the first): on a slow camera, keyframes by count alone are too close to
+  // add parallax. 0 = by count only.
+  double keyframe_min_distance_m = 0.0;
   int max_keyframes = 8;       // keyframes kept (beyond: the one nearest its successor is dropped)
   int max_iterations = 10;     // Levenberg-Marquardt steps per solve
   double huber_sigma = 2.0;    // Huber threshold on the whitened segment residual
@@ -98,8 +102,8 @@ class ReferenceRefiner {
     Segment2d left, right;
     Eigen::Vector3d left_line;
   };
-  // Counts one measured frame; true when it is to be a keyframe.
-  bool CountFrame();
+  // Counts one measured frame, at `cam_from_ref`; true when it is to be a keyframe.
+  bool CountFrame(const Rigid3d& cam_from_ref);
   // Adds a keyframe at `cam_from_ref` and solves. True when the solve succeeded; then
   // *newest_cam_from_ref is the keyframe's refined pose and Line / Covariance / Refined give the
   // refined structure.

@@ -85,7 +85,7 @@ TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulates
   Rigid3d newest;
   bool solved = false;
   for (int k = 1; k <= 4; ++k) {
-    ASSERT_TRUE(refiner.CountFrame());
+    ASSERT_TRUE(refiner.CountFrame(KeyframePose(k)));
     std::vector<ReferenceRefiner::Observation> observations;
     for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
       const Seen s = Observe(rig, KeyframePose(k), i);
@@ -116,8 +116,29 @@ TEST(ReferenceRefinerTest, KeyframesEveryIntervalFrames) {
   refiner.Reset(StereoRig());
   refiner.StartReference(0);
   std::vector<bool> keyframes;
-  for (int f = 0; f < 7; ++f) keyframes.push_back(refiner.CountFrame());
+  for (int f = 0; f < 7; ++f) keyframes.push_back(refiner.CountFrame(Rigid3d()));
   EXPECT_EQ(keyframes, (std::vector<bool>{false, false, true, false, false, true, false}));
+}
+
+TEST(ReferenceRefinerTest, KeyframesWaitForTheMinimumDistanceFromTheLastOne) {
+  // 1 cm per frame along x, a keyframe at least every 2 frames and 2.5 cm from the last one
+  // (the reference pair at the origin for the first).
+  ReferenceRefinementOptions options;
+  options.keyframe_interval = 2;
+  options.keyframe_min_distance_m = 0.025;
+  ReferenceRefiner refiner(options, 1.0);
+  refiner.Reset(StereoRig());
+  refiner.StartReference(0);
+  std::vector<int> keyframes;
+  for (int f = 1; f <= 8; ++f) {
+    Rigid3d cam_from_ref;
+    cam_from_ref.translation = Eigen::Vector3d(-0.01 * f, 0.0, 0.0);
+    if (!refiner.CountFrame(cam_from_ref)) continue;
+    keyframes.push_back(f);
+    Rigid3d newest;
+    refiner.AddKeyframeAndSolve(cam_from_ref, {}, &newest);  // no lines: stored, not solved
+  }
+  EXPECT_EQ(keyframes, (std::vector<int>{3, 6}));
 }
 
 TEST(ReferenceRefinerTest, RefinementNeedsTheReferenceToCurrentDirectionAndPropagatedNoise) {
