@@ -55,10 +55,12 @@ struct ReferenceRefinementOptions {
   // reference pair's for the first): on a slow camera, keyframes by count alone are too close to
   // add parallax. 0 = by count only.
   double keyframe_min_distance_m = 0.0;
-  int max_keyframes = 8;       // keyframes kept (beyond: the one nearest its successor is dropped)
+  int max_keyframes = 32;      // keyframes kept (beyond: the one nearest its successor is dropped)
   int max_iterations = 10;     // Levenberg-Marquardt steps per solve
   double huber_sigma = 2.0;    // Huber threshold on the whitened segment residual
-  bool move_pose = true;       // the current pose follows the refined newest keyframe
+  // The current pose follows the refined newest keyframe. Off: with 32 keyframes the room
+  // loop's maximum error is lower without it (docs/long_sequences.md).
+  bool move_pose = false;
   // Lines the reference pair does not define (near an epipolar plane: horizontal lines of a
   // horizontal rig) are triangulated from the reference's left image and a keyframe's once
   // their back-projected planes meet at this angle, then refined like the others. 0 = never

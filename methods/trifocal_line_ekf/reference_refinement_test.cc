@@ -158,7 +158,8 @@ TEST(ReferenceRefinerTest, RefinementNeedsTheReferenceToCurrentDirectionAndPropa
 
 // The tracker with the refinement over a sequence: every pose and covariance, in order.
 std::vector<TrackerOutput> TrackWithRefinement(const StereoSequence& sequence) {
-  const nlohmann::json options = {{"measurement", {{"refinement", {{"enabled", true}}}}}};
+  // 8 keyframes: over 250 frames the window is full and drops keyframes.
+  const nlohmann::json options = {{"measurement", {{"refinement", {{"enabled", true}, {"max_keyframes", 8}}}}}};
   std::unique_ptr<PoseTracker> tracker = TrifocalLineEkfInfo().create(options, "test");
   tracker->Reset(sequence.rig);
   std::vector<TrackerOutput> outputs;
@@ -174,7 +175,7 @@ bool BitwiseEqual(const TrackerOutput& a, const TrackerOutput& b) {
 
 TEST(ReferenceRefinerTest, RoomLoopIsBitwiseRepeatableWhateverTheHeapAndThread) {
   // The room loop of experiments/configs/long_room.json, shortened: 25 keyframes, so the window
-  // (8 keyframes) drops some. A second run on another thread (another malloc arena) with the
+  // (8 keyframes here) drops some. A second run on another thread (another malloc arena) with the
   // heap first shuffled (blocks of every small size freed in a random order, so that new
   // allocations land in a different address order) must give the same bits: nothing in the
   // refinement may depend on addresses (Ceres orders each elimination group by pointer),
