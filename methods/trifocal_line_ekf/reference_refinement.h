@@ -25,8 +25,12 @@
 // The tracker then measures against the refined L_i, with the reference endpoints' noise
 // replaced by the lines' own covariance C_i (the line's block of the inverse of the problem's
 // Gauss-Newton information: marginalised over the keyframe poses, the correlations between
-// lines left out), and moves the current pose to the solved newest keyframe's pose (the
-// current frame is that keyframe). Measured effect: docs/long_sequences.md.
+// lines left out), and with move_pose moves the current pose to the solved newest keyframe's
+// pose (the current frame is that keyframe). Measured effect: docs/long_sequences.md.
+//
+// Repeatable to the bit: Ceres orders the blocks of each elimination group by address, so the
+// blocks of a solve live in buffers whose address order is their index order (the lines in
+// lines_, the poses in pose_parameters_), never in separately allocated nodes.
 #pragma once
 
 #include <ceres/cost_function.h>
