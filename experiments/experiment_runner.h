@@ -61,11 +61,6 @@ struct ExperimentRun {
   double wall_time_s = 0.0;
 };
 
-// One job: simulate, run the tracker timing each Track() call, evaluate (alignment none).
-// Keeps the per-frame curve when config.per_frame_curves and the trajectories when
-// job.trial < config.save_trajectories.
-TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job);
-
 // Throws std::runtime_error naming the job (method, sweep point, trial, seed) when a trial
 // fails; the other threads stop at their next job.
 ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& options);
