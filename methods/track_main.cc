@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/csv.h"
+#include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
@@ -33,14 +34,7 @@ int main(int argc, char** argv) {
   app.add_flag("--list", list, "List the registered trackers and exit");
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
   app.add_flag("--list-options", list_options, "List the tracker's options (key, default, allowed values, doc) and exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "track: error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (const int exit_code = ParseCommandLine(app, argc, argv, "track"); exit_code >= 0) return exit_code;
 
   try {
     if (list) {
