@@ -166,18 +166,14 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
     std::vector<std::string> prefix = RowPrefix(config, points, t.method_index, t.point_index);
     prefix.push_back(std::to_string(t.trial));
     std::vector<std::string> row = prefix;
-    row.push_back(std::to_string(t.seed));
-    row.push_back(std::to_string(t.frames));
-    row.push_back(std::to_string(t.metrics_frame));
+    row.insert(row.end(), {std::to_string(t.seed), std::to_string(t.frames), std::to_string(t.metrics_frame)});
     for (double v : t.metrics) row.push_back(FormatDouble(v));
     row.push_back(t.finite ? "true" : "false");
     csv += CsvLine(row);
     for (const FrameError& e : t.curve) {
       std::vector<std::string> r = prefix;
-      for (const std::string& v : {std::to_string(e.frame), FormatDouble(e.time_s), FormatDouble(e.rot_err_deg),
-                                   FormatDouble(e.trans_err_m)}) {
-        r.push_back(v);
-      }
+      r.insert(r.end(), {std::to_string(e.frame), FormatDouble(e.time_s), FormatDouble(e.rot_err_deg),
+                         FormatDouble(e.trans_err_m)});
       curves += CsvLine(r);
       any_curve = true;
     }
@@ -189,8 +185,7 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
     const std::string gt_file = "gt_" + tag + ".tum";
     WriteTumTrajectory(JoinPath(tdir, est_file), t.estimate);
     WriteTumTrajectory(JoinPath(tdir, gt_file), t.ground_truth);
-    prefix.push_back(est_file);
-    prefix.push_back(gt_file);
+    prefix.insert(prefix.end(), {est_file, gt_file});
     index += CsvLine(prefix);
   }
   WriteTextFileAtomically(JoinPath(dir, "raw/trials.csv"), csv);
@@ -287,8 +282,7 @@ std::string SummaryCsv(const ExperimentConfig& config, const std::vector<Summary
   std::string csv = CsvLine(header);
   for (const SummaryRow& r : rows) {
     std::vector<std::string> row = RowPrefix(config, points, r.method, r.point);
-    row.push_back(std::to_string(r.trials));
-    row.push_back(std::to_string(r.finite_trials));
+    row.insert(row.end(), {std::to_string(r.trials), std::to_string(r.finite_trials)});
     for (const Summary& s : r.metrics) {
       for (double v : {s.mean, s.median, s.p2_5, s.p97_5}) row.push_back(FormatDouble(v));
     }
@@ -385,12 +379,9 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
         trans.push_back(c[k].trans_err_m);
       }
       std::vector<std::string> row = RowPrefix(config, points, key.first, key.second);
-      row.push_back(std::to_string(mean[k].frame));
-      row.push_back(std::to_string(curves.size()));
-      row.push_back(FormatDouble(mean[k].rot_err_deg));
-      row.push_back(FormatDouble(mean[k].trans_err_m));
-      row.push_back(FormatDouble(Quantile(rot, 0.5)));
-      row.push_back(FormatDouble(Quantile(trans, 0.5)));
+      row.insert(row.end(), {std::to_string(mean[k].frame), std::to_string(curves.size()),
+                             FormatDouble(mean[k].rot_err_deg), FormatDouble(mean[k].trans_err_m),
+                             FormatDouble(Quantile(rot, 0.5)), FormatDouble(Quantile(trans, 0.5))});
       csv += CsvLine(row);
     }
   }

@@ -42,7 +42,7 @@ struct Shard {
 Shard ParseShard(const std::string& text);
 
 struct RunOptions {
-  int threads = 0;  // 0 = std::thread::hardware_concurrency()
+  int threads = 0;  // 0 = CpuCores() (common/machine_info.h)
   Shard shard;
   // Called after each finished job with (done, total), from one thread at a time.
   std::function<void(size_t, size_t)> on_progress;
