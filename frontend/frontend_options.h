@@ -39,7 +39,8 @@ struct DetectionOptions {
   // LSD's refinement (OpenCV's LSD_REFINE_STD: arcs split into straight pieces) or none.
   bool lsd_refine = true;
   // Move each detected segment onto the image's edge by the tracker's edge snap
-  // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place.
+  // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not
+  // when the snap is off (tracking.snap_radius_px 0).
   bool snap_detections = true;
   // Segments shorter than this (after merging) are dropped: too short to track or describe.
   double min_length_px = 30.0;
