@@ -1,15 +1,18 @@
 // measure_frontend: the image front end against the ground truth of rendered sequences
 // (issue 18's numbers; docs/frontend.md quotes the output in results/frontend/).
 //
-//   measure_frontend [--frames N] [--step K] [--method NAME] [--out DIR]
+//   measure_frontend [--frames N] [--step K] [--method NAME] [--config FILE] [--out DIR]
+//                    [--scene TEXT] [--skip-detectors | --skip-sequences]
 //
-// Three scenes are rendered in memory (render/, default image settings: noise, defocus blur,
+// Four scenes are rendered in memory (render/, default image settings: noise, defocus blur,
 // vignetting, exposure changes): the room loop at 752 x 480 (EuRoC's image size and focal
-// length), the corridor walked forward at 640 x 480 and the paper's scene and motion (Sec. 5.1)
-// at 640 x 480, N frames each. On the paper scene the "noisy" run below is the synthetic paper
+// length), the corridor walked forward at 640 x 480, the paper's scene and motion (Sec. 5.1)
+// at 640 x 480 and the room loop on the default 640 x 480 rig (a narrower view), N frames
+// each (--scene: those whose name contains TEXT). On the paper scene the "noisy" run below is the synthetic paper
 // protocol at the front end's noise level.
 //
-// 1. detectors.md: every detector of frontend/line_detection.h, with the front end's merging,
+// 1. detectors.md: every detector of frontend/line_detection.h, with --config's detection options
+//    (snap_detections on the derivatives of the flow's pyramid, whose building is not timed) and the front end's merging,
 //    length and contrast filters, on frames 0, K, 2K, ... of both (both cameras): recall = the
 //    fraction of the visible ground-truth segments at least 40 px long that a detection lies on
 //    (within 2 px and 2 deg, frontend_audit.h), precision = the fraction of detections that lie
