@@ -99,4 +99,24 @@ void WriteJsonFile(const std::string& path, const nlohmann::json& value, int ind
   WriteTextFileAtomically(path, value.dump(indent) + "\n");
 }
 
+void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const nlohmann::json& value) {
+  nlohmann::json* node = object;
+  size_t start = 0;
+  while (true) {
+    const size_t dot = dotted_key.find('.', start);
+    const std::string part = dotted_key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) throw std::invalid_argument("malformed dotted key '" + dotted_key + "'");
+    if (!node->is_object()) {
+      throw std::invalid_argument("'" + dotted_key.substr(0, start ? start - 1 : 0) + "' is not an object");
+    }
+    if (dot == std::string::npos) {
+      (*node)[part] = value;
+      return;
+    }
+    if (!node->contains(part)) (*node)[part] = nlohmann::json::object();
+    node = &(*node)[part];
+    start = dot + 1;
+  }
+}
+
 }  // namespace slt

@@ -109,6 +109,9 @@ nlohmann::json ReadJsonFile(const std::string& path);
 // The dotted key path ("a.b[2]") of the first number in `value` that is not finite (nlohmann
 // holds NaN and infinity and dumps them as null); "" when every number is finite.
 std::string FindNonFiniteNumber(const nlohmann::json& value, const std::string& path = "");
+// Sets `value` at the dotted key path ("scene.paper.lines") in `object`, creating intermediate
+// objects. Throws std::invalid_argument on an empty part or a part that is not an object.
+void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const nlohmann::json& value);
 // Writes atomically (temporary file + rename; WriteTextFileAtomically, common/file_io.h).
 void WriteJsonFile(const std::string& path, const nlohmann::json& value, int indent = 2);
 

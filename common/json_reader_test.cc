@@ -120,5 +120,16 @@ TEST(ReadJsonFile, DirectoryNamesTheFile) {
   EXPECT_EQ(ConfigErrorOf([&] { ReadJsonFile(dir); }), dir + ": is a directory, expected a file");
 }
 
+TEST(JsonReader, SetDottedKeyCreatesObjectsAndKeepsSiblings) {
+  nlohmann::json j = {{"noise", {{"model", "gaussian"}}}};
+  SetDottedKey(&j, "noise.endpoint_px", 1.5);
+  SetDottedKey(&j, "scene.paper.lines", 12);
+  EXPECT_EQ(j["noise"]["model"], "gaussian");
+  EXPECT_EQ(j["noise"]["endpoint_px"], 1.5);
+  EXPECT_EQ(j["scene"]["paper"]["lines"], 12);
+  EXPECT_THROW(SetDottedKey(&j, "noise.model.x", 1), std::invalid_argument);
+  EXPECT_THROW(SetDottedKey(&j, "noise..x", 1), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace slt

@@ -202,4 +202,12 @@ void WriteKittiTrajectory(const std::string& path, const Trajectory& trajectory)
   WriteTextFileAtomically(path, out);
 }
 
+double PathLengthM(const Trajectory& trajectory) {
+  double length = 0.0;
+  for (size_t k = 1; k < trajectory.size(); ++k) {
+    length += (trajectory[k].world_from_cam.translation - trajectory[k - 1].world_from_cam.translation).norm();
+  }
+  return length;
+}
+
 }  // namespace slt

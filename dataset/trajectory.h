@@ -35,6 +35,9 @@ struct TimedPose {
 
 using Trajectory = std::vector<TimedPose>;
 
+// The length of the camera centres' polyline, metres (0 for fewer than two poses).
+double PathLengthM(const Trajectory& trajectory);
+
 // Throw std::runtime_error "<file>:<line>: <what is wrong>" on malformed input.
 Trajectory ReadTumTrajectory(const std::string& path);
 // Writes atomically with a '#' header line. Throws std::invalid_argument naming the pose when a

@@ -190,5 +190,14 @@ TEST(Trajectory, WritersRejectWhatTheReadersWould) {
   EXPECT_FALSE(std::ifstream(path).good()) << "a file was written";
 }
 
+TEST(Trajectory, PathLengthSumsTheStepsBetweenCameraCentres) {
+  Trajectory t;
+  EXPECT_EQ(PathLengthM(t), 0.0);
+  for (const Eigen::Vector3d& c : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 4, 0), Eigen::Vector3d(3, 4, 2)}) {
+    t.push_back({0.0, Rigid3d(Eigen::Matrix3d::Identity(), c)});
+  }
+  EXPECT_DOUBLE_EQ(PathLengthM(t), 7.0);
+}
+
 }  // namespace
 }  // namespace slt

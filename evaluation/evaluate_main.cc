@@ -20,6 +20,7 @@
 #include <iostream>
 #include <string>
 
+#include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/script_runner.h"
@@ -119,8 +120,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->capture_default_str();
 
-  try {
-    app.parse(argc, argv);
+  const int exit_code = slt::ParseCommandLine(app, argc, argv, "evaluate", [&] {
     // Checked here rather than with CLI11's range validators, whose messages print the whole
     // range of a double.
     if (!(kitti_frame_period > 0.0) || !std::isfinite(kitti_frame_period)) {
@@ -137,13 +137,8 @@ int main(int argc, char** argv) {
     if (!plot_path.empty() && fs::path(plot_path).extension() != ".png") {
       throw CLI::ValidationError("--plot", "expected a file name ending in .png");
     }
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "evaluate: error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  });
+  if (exit_code >= 0) return exit_code;
   if (align) alignment = correct_scale ? "sim3" : "se3";
   if (alignment.empty()) alignment = "none";
 

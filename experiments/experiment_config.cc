@@ -67,17 +67,12 @@ MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const s
   return method;
 }
 
-std::vector<MethodSpec> AllMethods() {
-  std::vector<MethodSpec> methods;
-  for (const std::string& name : RegisteredTrackerNames(false)) methods.push_back({name, name});
-  return methods;
-}
-
-// Appends the methods of `key`: an array, or (allow_all) "all" or absent for AllMethods().
+// Appends the methods of `key`: an array, or (allow_all) "all" or absent for every registered
+// tracker that is not plumbing_only, with default options.
 void ReadMethodList(JsonReader& reader, const std::string& key, bool allow_all, std::vector<MethodSpec>* methods) {
   const nlohmann::json* v = reader.Find(key);
   if (allow_all && (v == nullptr || (v->is_string() && v->get<std::string>() == "all"))) {
-    for (const MethodSpec& m : AllMethods()) methods->push_back(m);
+    for (const std::string& name : RegisteredTrackerNames(false)) methods->push_back({name, name});
     return;
   }
   if (v == nullptr) return;
@@ -310,11 +305,8 @@ void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::strin
 }
 
 void CheckOrdering(const ExperimentConfig& c, const OrderingCheck& o, const std::string& where, const std::string& key) {
-  for (const char* side : {"better", "worse"}) {
-    const std::string& id = std::string(side) == "better" ? o.better : o.worse;
-    bool found = false;
-    for (const MethodSpec& m : c.methods) found = found || m.Id() == id;
-    if (!found) ThrowOptionError(where, key, side, "'" + id + "' is not the id of a method of this config");
+  for (const auto& [side, id] : {std::pair<const char*, std::string>{"better", o.better}, {"worse", o.worse}}) {
+    if (MethodIndex(c, id) < 0) ThrowOptionError(where, key, side, "'" + id + "' is not the id of a method of this config");
   }
   for (const auto& [parameter, value] : o.at.items()) {
     bool found = false;
@@ -478,26 +470,6 @@ std::vector<SweepPoint> ExpandSweep(const std::vector<SweepAxis>& axes) {
   return points;
 }
 
-void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const nlohmann::json& value) {
-  nlohmann::json* node = object;
-  size_t start = 0;
-  while (true) {
-    const size_t dot = dotted_key.find('.', start);
-    const std::string part = dotted_key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (part.empty()) throw std::invalid_argument("malformed dotted key '" + dotted_key + "'");
-    if (!node->is_object()) {
-      throw std::invalid_argument("'" + dotted_key.substr(0, start ? start - 1 : 0) + "' is not an object");
-    }
-    if (dot == std::string::npos) {
-      (*node)[part] = value;
-      return;
-    }
-    if (!node->contains(part)) (*node)[part] = nlohmann::json::object();
-    node = &(*node)[part];
-    start = dot + 1;
-  }
-}
-
 SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoint& point, int trial) {
   nlohmann::json sim = config.simulation;
   for (size_t a = 0; a < config.sweep.size(); ++a) SetDottedKey(&sim, config.sweep[a].parameter, point.values[a]);
@@ -513,6 +485,13 @@ std::string PointText(const ExperimentConfig& config, const SweepPoint& point) {
     s += (a ? ", " : "") + config.sweep[a].parameter + " = " + FormatValue(point.values[a]);
   }
   return s;
+}
+
+int MethodIndex(const ExperimentConfig& config, const std::string& id) {
+  for (size_t m = 0; m < config.methods.size(); ++m) {
+    if (config.methods[m].Id() == id) return static_cast<int>(m);
+  }
+  return -1;
 }
 
 int MetricsFrameFor(const ExperimentConfig& config, int frames) {

@@ -131,9 +131,6 @@ struct SweepPoint {
 // sweep.
 std::vector<SweepPoint> ExpandSweep(const std::vector<SweepAxis>& axes);
 
-// Sets `value` at the dotted key path in `object`, creating intermediate objects.
-void SetDottedKey(nlohmann::json* object, const std::string& dotted_key, const nlohmann::json& value);
-
 // The simulation config of a sweep point for trial `trial`: the base JSON with the point's
 // values set, read by SimulationConfigFromJson, seed = TrialSeed(config.seed, trial). The seed
 // does not depend on the point or the method: every sweep value and every method of trial k
@@ -142,6 +139,9 @@ SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoin
 
 // "noise.endpoint_px = 1, outliers.rate = 0.1" ("(no sweep)" without a sweep).
 std::string PointText(const ExperimentConfig& config, const SweepPoint& point);
+
+// The index in config.methods of the method with this id; -1 when there is none.
+int MethodIndex(const ExperimentConfig& config, const std::string& id);
 
 // The frame at which errors are read for a sequence of `frames` frames.
 int MetricsFrameFor(const ExperimentConfig& config, int frames);

@@ -183,17 +183,6 @@ TEST(Sweep, ExpandsEveryCombinationFirstAxisOutermost) {
   EXPECT_TRUE(ExpandSweep({})[0].values.empty());
 }
 
-TEST(Sweep, SetDottedKeyCreatesObjectsAndKeepsSiblings) {
-  json j = {{"noise", {{"model", "gaussian"}}}};
-  SetDottedKey(&j, "noise.endpoint_px", 1.5);
-  SetDottedKey(&j, "scene.paper.lines", 12);
-  EXPECT_EQ(j["noise"]["model"], "gaussian");
-  EXPECT_EQ(j["noise"]["endpoint_px"], 1.5);
-  EXPECT_EQ(j["scene"]["paper"]["lines"], 12);
-  EXPECT_THROW(SetDottedKey(&j, "noise.model.x", 1), std::invalid_argument);
-  EXPECT_THROW(SetDottedKey(&j, "noise..x", 1), std::invalid_argument);
-}
-
 TEST(Sweep, TrialSeedIsTheSameForEverySweepValueAndDiffersAcrossTrials) {
   const ExperimentConfig c = ExperimentConfigFromJson(
       {{"seed", 5}, {"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {0, 1, 2.5}}}}}}, "cfg.json");

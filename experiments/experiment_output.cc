@@ -22,42 +22,13 @@ struct MetricInfo {
 };
 
 constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
-    {"rot_err_deg", "Rotation error (deg)"},
-    {"trans_err_m", "Translation error (m)"},
-    {"final_rot_err_deg", "Final rotation error (deg)"},
-    {"final_trans_err_m", "Final translation error (m)"},
-    {"ate_trans_m", "ATE translation RMSE (m)"},
-    {"ate_rot_deg", "ATE rotation RMSE (deg)"},
-    {"max_trans_err_m", "Largest translation error (m)"},
-    {"max_rot_err_deg", "Largest rotation error (deg)"},
-    {"rpe_trans_m", "RPE translation RMSE (m)"},
-    {"rpe_rot_deg", "RPE rotation RMSE (deg)"},
-    {"path_length_m", "Path length (m)"},
-    {"end_gap_m", "Start-to-end gap (m)"},
-    {"drift_pct", "Gap / path length (%)"},
-    {"time_mean_us", "Time per frame (us)"},
-    {"time_median_us", "Median time per frame (us)"},
-    {"features_used", "Features used per frame"},
-    {"features_available", "Features available per frame"},
-    {"new_references", "New reference pairs"},
-    {"lost_frames", "Lost frames"},
-    {"new_ref_few_features", "New reference pairs: fewer than min_features left"},
-    {"new_ref_feature_fraction", "New reference pairs: below min_feature_fraction"},
-    {"lost_few_measurable", "Lost frames: too few measurable features"},
-    {"lost_few_inside_gate", "Lost frames: too few features inside the gate"},
-    {"lost_no_update", "Lost frames: no update solution"},
-    {"lost_non_finite", "Lost frames: non-finite state"},
-    {"lost_unconstrained", "Lost frames: a pose direction not measured"},
-    {"lost_few_agree", "Lost frames: under a quarter of the features agree"},
-    {"features_unmatched", "Reference features not matched in both images, per frame"},
-    {"features_degenerate", "Degenerate features per frame"},
-    {"features_outside_gate", "Measurable features outside the gate, per frame"},
-    {"degraded_frames", "Degraded frames"},
-    {"nees", "NEES (6 dof, mean)"},
-    {"nees_rot", "NEES orientation (3 dof)"},
-    {"nees_pos", "NEES position (3 dof)"},
-    {"beyond_3sigma_pct", "Errors beyond 3 sigma (%)"},
+#define SLT_METRIC_INFO(id, name, title) {name, title},
+    SLT_TRIAL_METRICS(SLT_METRIC_INFO)
+#undef SLT_METRIC_INFO
 };
+
+// Display name of a metric with its unit, e.g. "Rotation error (deg)".
+std::string MetricTitle(int metric) { return kMetrics[metric].title; }
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
 
@@ -78,11 +49,10 @@ std::vector<std::string> Header(const ExperimentConfig& config, std::initializer
 }
 
 // Method index from its id; throws naming the file and line.
-size_t MethodIndex(const ExperimentConfig& config, const std::string& id, const std::string& where) {
-  for (size_t m = 0; m < config.methods.size(); ++m) {
-    if (config.methods[m].Id() == id) return m;
-  }
-  throw std::runtime_error(where + ": method '" + id + "' is not in the config");
+size_t MethodOfRow(const ExperimentConfig& config, const std::string& id, const std::string& where) {
+  const int m = MethodIndex(config, id);
+  if (m < 0) throw std::runtime_error(where + ": method '" + id + "' is not in the config");
+  return static_cast<size_t>(m);
 }
 
 size_t ParseIndex(const std::string& text, const std::string& where) {
@@ -104,6 +74,20 @@ size_t PointOfRow(const CsvTable& table, const std::vector<std::string>& row, co
     }
   }
   return p;
+}
+
+// The trials that pass `keep`, by (method, point) in that order, each group by trial.
+template <typename Keep>
+std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> GroupTrials(const std::vector<TrialResult>& trials,
+                                                                                  const Keep& keep) {
+  std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> groups;
+  for (const TrialResult& t : trials) {
+    if (keep(t)) groups[{t.method_index, t.point_index}].push_back(&t);
+  }
+  for (auto& [key, group] : groups) {
+    std::sort(group.begin(), group.end(), [](const TrialResult* a, const TrialResult* b) { return a->trial < b->trial; });
+  }
+  return groups;
 }
 
 std::string Sig(double v) {
@@ -159,11 +143,6 @@ int TrialMetricFromName(const std::string& name) {
   return -1;
 }
 
-std::string MetricTitle(int metric) {
-  if (metric < 0 || metric >= kNumTrialMetrics) return "unknown";
-  return kMetrics[metric].title;
-}
-
 std::vector<std::string> SweepColumns(const ExperimentConfig& config) {
   std::vector<std::string> columns;
   for (const SweepAxis& a : config.sweep) columns.push_back(a.parameter);
@@ -187,18 +166,14 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
     std::vector<std::string> prefix = RowPrefix(config, points, t.method_index, t.point_index);
     prefix.push_back(std::to_string(t.trial));
     std::vector<std::string> row = prefix;
-    row.push_back(std::to_string(t.seed));
-    row.push_back(std::to_string(t.frames));
-    row.push_back(std::to_string(t.metrics_frame));
+    row.insert(row.end(), {std::to_string(t.seed), std::to_string(t.frames), std::to_string(t.metrics_frame)});
     for (double v : t.metrics) row.push_back(FormatDouble(v));
     row.push_back(t.finite ? "true" : "false");
     csv += CsvLine(row);
     for (const FrameError& e : t.curve) {
       std::vector<std::string> r = prefix;
-      for (const std::string& v : {std::to_string(e.frame), FormatDouble(e.time_s), FormatDouble(e.rot_err_deg),
-                                   FormatDouble(e.trans_err_m)}) {
-        r.push_back(v);
-      }
+      r.insert(r.end(), {std::to_string(e.frame), FormatDouble(e.time_s), FormatDouble(e.rot_err_deg),
+                         FormatDouble(e.trans_err_m)});
       curves += CsvLine(r);
       any_curve = true;
     }
@@ -210,8 +185,7 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
     const std::string gt_file = "gt_" + tag + ".tum";
     WriteTumTrajectory(JoinPath(tdir, est_file), t.estimate);
     WriteTumTrajectory(JoinPath(tdir, gt_file), t.ground_truth);
-    prefix.push_back(est_file);
-    prefix.push_back(gt_file);
+    prefix.insert(prefix.end(), {est_file, gt_file});
     index += CsvLine(prefix);
   }
   WriteTextFileAtomically(JoinPath(dir, "raw/trials.csv"), csv);
@@ -235,7 +209,7 @@ std::vector<TrialResult> ReadRawResults(const std::string& dir, const Experiment
       const std::string where = table.where + ":" + std::to_string(r + 2);
       try {
         TrialResult key;
-        key.method_index = MethodIndex(config, row[table.Column("method")], where);
+        key.method_index = MethodOfRow(config, row[table.Column("method")], where);
         key.point_index = PointOfRow(table, row, config, points, where);
         key.trial = static_cast<int>(ParseIndex(row[table.Column("trial")], where));
         auto column = [&](const char* name) -> const std::string& { return row[table.Column(name)]; };
@@ -282,22 +256,18 @@ std::vector<TrialResult> ReadRawResults(const std::string& dir, const Experiment
 }
 
 std::vector<SummaryRow> SummarizeTrials(const ExperimentConfig& /*config*/, const std::vector<TrialResult>& trials) {
-  std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> groups;
-  for (const TrialResult& t : trials) groups[{t.method_index, t.point_index}].push_back(&t);
   std::vector<SummaryRow> rows;
-  for (const auto& [key, group] : groups) {
+  for (const auto& [key, group] : GroupTrials(trials, [](const TrialResult&) { return true; })) {
     SummaryRow row;
     row.method = key.first;
     row.point = key.second;
     row.trials = group.size();
-    std::vector<const TrialResult*> sorted = group;
-    std::sort(sorted.begin(), sorted.end(), [](const TrialResult* a, const TrialResult* b) { return a->trial < b->trial; });
     for (int m = 0; m < kNumTrialMetrics; ++m) {
       std::vector<double> values;
-      for (const TrialResult* t : sorted) values.push_back(t->finite ? t->metrics[m] : std::nan(""));
+      for (const TrialResult* t : group) values.push_back(t->finite ? t->metrics[m] : std::nan(""));
       row.metrics[m] = Summarize(values);
     }
-    for (const TrialResult* t : sorted) row.finite_trials += t->finite ? 1 : 0;
+    for (const TrialResult* t : group) row.finite_trials += t->finite ? 1 : 0;
     rows.push_back(row);
   }
   return rows;
@@ -312,8 +282,7 @@ std::string SummaryCsv(const ExperimentConfig& config, const std::vector<Summary
   std::string csv = CsvLine(header);
   for (const SummaryRow& r : rows) {
     std::vector<std::string> row = RowPrefix(config, points, r.method, r.point);
-    row.push_back(std::to_string(r.trials));
-    row.push_back(std::to_string(r.finite_trials));
+    row.insert(row.end(), {std::to_string(r.trials), std::to_string(r.finite_trials)});
     for (const Summary& s : r.metrics) {
       for (double v : {s.mean, s.median, s.p2_5, s.p97_5}) row.push_back(FormatDouble(v));
     }
@@ -395,15 +364,11 @@ std::string SummaryLatex(const ExperimentConfig& config, const std::vector<Summa
 
 std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> groups;
-  for (const TrialResult& t : trials) {
-    if (t.finite && !t.curve.empty()) groups[{t.method_index, t.point_index}].push_back(&t);
-  }
+  const auto groups = GroupTrials(trials, [](const TrialResult& t) { return t.finite && !t.curve.empty(); });
   const std::vector<std::string> header = Header(
       config, {"frame", "trials", "rot_err_deg_mean", "trans_err_m_mean", "rot_err_deg_median", "trans_err_m_median"});
   std::string csv = CsvLine(header);
-  for (auto& [key, group] : groups) {
-    std::sort(group.begin(), group.end(), [](const TrialResult* a, const TrialResult* b) { return a->trial < b->trial; });
+  for (const auto& [key, group] : groups) {
     std::vector<ErrorCurve> curves;
     for (const TrialResult* t : group) curves.push_back(t->curve);
     const ErrorCurve mean = MeanErrorCurve(curves);
@@ -414,12 +379,9 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
         trans.push_back(c[k].trans_err_m);
       }
       std::vector<std::string> row = RowPrefix(config, points, key.first, key.second);
-      row.push_back(std::to_string(mean[k].frame));
-      row.push_back(std::to_string(curves.size()));
-      row.push_back(FormatDouble(mean[k].rot_err_deg));
-      row.push_back(FormatDouble(mean[k].trans_err_m));
-      row.push_back(FormatDouble(Quantile(rot, 0.5)));
-      row.push_back(FormatDouble(Quantile(trans, 0.5)));
+      row.insert(row.end(), {std::to_string(mean[k].frame), std::to_string(curves.size()),
+                             FormatDouble(mean[k].rot_err_deg), FormatDouble(mean[k].trans_err_m),
+                             FormatDouble(Quantile(rot, 0.5)), FormatDouble(Quantile(trans, 0.5))});
       csv += CsvLine(row);
     }
   }

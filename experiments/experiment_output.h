@@ -50,14 +50,9 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
 // "- <point>: a (0.18) < b (1.5)\n" per sweep point: the methods from the lowest mean rotation
 // error at the metrics frame up (the full ordering, of which a config's expect_better are pairs).
 std::string OrderingText(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
-// "noise.endpoints = sliding" ("(no sweep)" without one).
-std::string PointText(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t point);
 
 // summary.csv, summary.md, summary.tex and (per_frame_curves) curves.csv.
 void WriteSummaries(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials);
-
-// Display name of a metric with its unit, e.g. "Rotation error (deg)".
-std::string MetricTitle(int metric);
 
 // Shard outputs combined: the config (identical in every shard) and every trial, in job
 // order. Throws std::runtime_error when the configs differ, a job is missing or appears twice.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -24,56 +25,6 @@ namespace {
 
 bool Finite(const Rigid3d& pose) { return pose.rotation.allFinite() && pose.translation.allFinite(); }
 
-double PathLength(const Trajectory& trajectory) {
-  double length = 0.0;
-  for (size_t k = 1; k < trajectory.size(); ++k) {
-    length += (trajectory[k].world_from_cam.translation - trajectory[k - 1].world_from_cam.translation).norm();
-  }
-  return length;
-}
-
-}  // namespace
-
-std::vector<Job> ExperimentJobs(const ExperimentConfig& config) {
-  const size_t points = ExpandSweep(config.sweep).size();
-  std::vector<Job> jobs;
-  for (size_t m = 0; m < config.methods.size(); ++m) {
-    for (size_t p = 0; p < points; ++p) {
-      for (int k = 0; k < config.trials; ++k) jobs.push_back({JobIndex(points, config.trials, m, p, k), m, p, k});
-    }
-  }
-  return jobs;
-}
-
-Shard ParseShard(const std::string& text) {
-  const size_t slash = text.find('/');
-  Shard shard;
-  try {
-    if (slash == std::string::npos) throw std::invalid_argument("");
-    size_t used = 0;
-    shard.index = std::stoi(text.substr(0, slash), &used);
-    if (used != slash) throw std::invalid_argument("");
-    const std::string count = text.substr(slash + 1);
-    shard.count = std::stoi(count, &used);
-    if (used != count.size()) throw std::invalid_argument("");
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--shard: expected i/n (e.g. 0/4), got '" + text + "'");
-  }
-  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
-    throw std::invalid_argument("--shard: need 0 <= i < n, got '" + text + "'");
-  }
-  return shard;
-}
-
-std::string DescribeJob(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
-  std::string s = "method '" + config.methods[job.method].Id() + "'";
-  if (!config.sweep.empty()) s += ", " + PointText(config, points[job.point]);
-  s += ", trial " + std::to_string(job.trial) + " (simulation seed " +
-       std::to_string(TrialSeed(config.seed, static_cast<std::uint64_t>(job.trial))) + ")";
-  return s;
-}
-
-namespace {
 
 // The metrics of one run from its per-frame tracker outputs (with the frame times and the wall
 // time of each Track() call) against the ground truth (empty: only the run's own metrics).
@@ -85,25 +36,13 @@ void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth,
   estimate.reserve(run.size());
   std::vector<double> times_us;
   times_us.reserve(run.size());
-  double features_used = 0.0, features_available = 0.0;
-  double unmatched = 0.0, degenerate = 0.0, outside_gate = 0.0;
-  int new_references = 0, lost = 0;
-  int by_reason[kNumStatusReasons] = {};
-  int degraded = 0;
+  RunCounts counts;
   std::vector<Matrix6d> covariances;
   bool has_covariance = true;
   for (size_t k = 0; k < run.size(); ++k) {
     const TrackerOutput& out = run[k].output;
     times_us.push_back(run[k].time_us);
-    features_used += out.features_used;
-    features_available += out.features_available;
-    unmatched += out.features_unmatched;
-    degenerate += out.features_degenerate;
-    outside_gate += out.features_outside_gate;
-    ++by_reason[static_cast<int>(out.reason)];
-    if (k > 0 && out.status == TrackingStatus::kNewReference) ++new_references;
-    if (out.status == TrackingStatus::kLost) ++lost;
-    if (out.status == TrackingStatus::kDegraded) ++degraded;
+    counts.Add(out);
     has_covariance = has_covariance && out.has_covariance;
     covariances.push_back(out.covariance);
     r->finite = r->finite && Finite(out.cam_from_world);
@@ -117,24 +56,25 @@ void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth,
   for (double t : times_us) time_sum += t;
   m[kTimeMeanUs] = time_sum / n;
   m[kTimeMedianUs] = Quantile(times_us, 0.5);
-  m[kFeaturesUsed] = features_used / n;
-  m[kFeaturesAvailable] = features_available / n;
-  m[kNewReferences] = new_references;
-  m[kLostFrames] = lost;
-  auto frames_with = [&](StatusReason reason) { return by_reason[static_cast<int>(reason)]; };
-  m[kNewRefFewFeatures] = frames_with(StatusReason::kFewFeaturesLeft);
-  m[kNewRefFeatureFraction] = frames_with(StatusReason::kFeatureFractionLeft);
-  m[kLostFewMeasurable] = frames_with(StatusReason::kFewMeasurable);
-  m[kLostFewInsideGate] = frames_with(StatusReason::kFewInsideGate);
-  m[kLostNoUpdate] = frames_with(StatusReason::kNoUpdate);
-  m[kLostNonFinite] = frames_with(StatusReason::kNonFinite);
-  m[kLostUnconstrained] = frames_with(StatusReason::kUnconstrained);
-  m[kLostFewAgree] = frames_with(StatusReason::kFewAgree);
-  m[kFeaturesUnmatched] = unmatched / n;
-  m[kFeaturesDegenerate] = degenerate / n;
-  m[kFeaturesOutsideGate] = outside_gate / n;
-  m[kDegradedFrames] = degraded;
-  if (!ground_truth.empty()) m[kPathLengthM] = PathLength(ground_truth);
+  m[kFeaturesUsed] = counts.features_used / n;
+  m[kFeaturesAvailable] = counts.features_available / n;
+  // The first frame's new reference defines the world: not a new reference pair.
+  const bool first_is_new = !run.empty() && run.front().output.status == TrackingStatus::kNewReference;
+  m[kNewReferences] = counts.Frames(TrackingStatus::kNewReference) - (first_is_new ? 1 : 0);
+  m[kLostFrames] = counts.Frames(TrackingStatus::kLost);
+  m[kNewRefFewFeatures] = counts.Frames(StatusReason::kFewFeaturesLeft);
+  m[kNewRefFeatureFraction] = counts.Frames(StatusReason::kFeatureFractionLeft);
+  m[kLostFewMeasurable] = counts.Frames(StatusReason::kFewMeasurable);
+  m[kLostFewInsideGate] = counts.Frames(StatusReason::kFewInsideGate);
+  m[kLostNoUpdate] = counts.Frames(StatusReason::kNoUpdate);
+  m[kLostNonFinite] = counts.Frames(StatusReason::kNonFinite);
+  m[kLostUnconstrained] = counts.Frames(StatusReason::kUnconstrained);
+  m[kLostFewAgree] = counts.Frames(StatusReason::kFewAgree);
+  m[kFeaturesUnmatched] = counts.features_unmatched / n;
+  m[kFeaturesDegenerate] = counts.features_degenerate / n;
+  m[kFeaturesOutsideGate] = counts.features_outside_gate / n;
+  m[kDegradedFrames] = counts.Frames(TrackingStatus::kDegraded);
+  if (!ground_truth.empty()) m[kPathLengthM] = PathLengthM(ground_truth);
   if (r->finite && !estimate.empty() && !ground_truth.empty()) {
     EvaluationOptions options;  // alignment none: both worlds are the first left camera
     const TrajectoryErrors errors = EvaluateTrajectory(ground_truth, estimate, options);
@@ -202,8 +142,9 @@ void RunDatasetTrial(const ExperimentConfig& config, const MethodSpec& method, c
   FillMetrics(config, ground_truth, frame_times, run, r);
 }
 
-}  // namespace
-
+// One job: simulate (or read the dataset), run the tracker timing each Track() call, evaluate
+// (alignment none). Keeps the per-frame curve when config.per_frame_curves and the trajectories
+// when job.trial < config.save_trajectories.
 TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
   const MethodSpec& method = config.methods[job.method];
   TrialResult r;
@@ -226,6 +167,42 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   for (const StereoFrame& frame : sequence.frames) frame_times.push_back(frame.time);
   FillMetrics(config, sim.ground_truth, frame_times, run, &r);
   return r;
+}
+
+}  // namespace
+
+std::vector<Job> ExperimentJobs(const ExperimentConfig& config) {
+  const size_t points = ExpandSweep(config.sweep).size();
+  std::vector<Job> jobs;
+  for (size_t m = 0; m < config.methods.size(); ++m) {
+    for (size_t p = 0; p < points; ++p) {
+      for (int k = 0; k < config.trials; ++k) jobs.push_back({JobIndex(points, config.trials, m, p, k), m, p, k});
+    }
+  }
+  return jobs;
+}
+
+Shard ParseShard(const std::string& text) {
+  Shard shard;
+  const char* end = text.data() + text.size();
+  const std::from_chars_result index = std::from_chars(text.data(), end, shard.index);
+  const bool slash = index.ec == std::errc() && index.ptr != end && *index.ptr == '/';
+  const std::from_chars_result count = slash ? std::from_chars(index.ptr + 1, end, shard.count) : index;
+  if (!slash || count.ec != std::errc() || count.ptr != end) {
+    throw std::invalid_argument("--shard: expected i/n (e.g. 0/4), got '" + text + "'");
+  }
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    throw std::invalid_argument("--shard: need 0 <= i < n, got '" + text + "'");
+  }
+  return shard;
+}
+
+std::string DescribeJob(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job) {
+  std::string s = "method '" + config.methods[job.method].Id() + "'";
+  if (!config.sweep.empty()) s += ", " + PointText(config, points[job.point]);
+  s += ", trial " + std::to_string(job.trial) + " (simulation seed " +
+       std::to_string(TrialSeed(config.seed, static_cast<std::uint64_t>(job.trial))) + ")";
+  return s;
 }
 
 ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& options) {

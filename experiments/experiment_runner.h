@@ -42,7 +42,7 @@ struct Shard {
 Shard ParseShard(const std::string& text);
 
 struct RunOptions {
-  int threads = 0;  // 0 = std::thread::hardware_concurrency()
+  int threads = 0;  // 0 = CpuCores() (common/machine_info.h)
   Shard shard;
   // Called after each finished job with (done, total), from one thread at a time.
   std::function<void(size_t, size_t)> on_progress;
@@ -60,11 +60,6 @@ struct ExperimentRun {
   int threads = 1;
   double wall_time_s = 0.0;
 };
-
-// One job: simulate, run the tracker timing each Track() call, evaluate (alignment none).
-// Keeps the per-frame curve when config.per_frame_curves and the trajectories when
-// job.trial < config.save_trajectories.
-TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const Job& job);
 
 // Throws std::runtime_error naming the job (method, sweep point, trial, seed) when a trial
 // fails; the other threads stop at their next job.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
@@ -53,8 +54,7 @@ int main(int argc, char** argv) {
   for (const std::string& name : AvailableConfigs()) configs += "\n  " + name;
   app.footer("CONFIG names in experiments/configs/ (docs/experiments.md):" + (configs.empty() ? std::string(" none found") : configs));
   Shard shard;
-  try {
-    app.parse(argc, argv);
+  const int exit_code = ParseCommandLine(app, argc, argv, "run_experiment", [&] {
     if (merge_dirs.empty() && config_arg.empty()) throw CLI::ValidationError("config", "a CONFIG or --merge DIR... is required");
     if (!merge_dirs.empty() && !config_arg.empty()) {
       throw CLI::ValidationError("--merge", "takes the config from the shard directories: give no CONFIG");
@@ -69,12 +69,8 @@ int main(int argc, char** argv) {
         throw CLI::ValidationError(e.what());
       }
     }
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "run_experiment: error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  });
+  if (exit_code >= 0) return exit_code;
 
   // An interrupted run leaves no temporary files; its finished jobs stay in the staging
   // directory for --resume.

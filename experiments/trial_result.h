@@ -12,54 +12,56 @@
 
 namespace slt {
 
-// Per-trial metrics, in CSV column order. Errors are the ATE terms with alignment "none".
+// Per-trial metrics, declared once: X(enumerator, CSV column, title in tables and plots), in
+// CSV column order. docs/experiments.md defines each; errors are the ATE terms with alignment
+// "none". The reason columns count frames by TrackerOutput::reason (methods/pose_tracker.h).
+#define SLT_TRIAL_METRICS(X)                                                                               \
+  X(kRotErrDeg, "rot_err_deg", "Rotation error (deg)") /* at the metrics frame: the paper's value */       \
+  X(kTransErrM, "trans_err_m", "Translation error (m)")                                                    \
+  X(kFinalRotErrDeg, "final_rot_err_deg", "Final rotation error (deg)")                                    \
+  X(kFinalTransErrM, "final_trans_err_m", "Final translation error (m)")                                   \
+  X(kAteTransM, "ate_trans_m", "ATE translation RMSE (m)")                                                 \
+  X(kAteRotDeg, "ate_rot_deg", "ATE rotation RMSE (deg)")                                                  \
+  X(kMaxTransErrM, "max_trans_err_m", "Largest translation error (m)")                                     \
+  X(kMaxRotErrDeg, "max_rot_err_deg", "Largest rotation error (deg)")                                      \
+  X(kRpeTransM, "rpe_trans_m", "RPE translation RMSE (m)")                                                 \
+  X(kRpeRotDeg, "rpe_rot_deg", "RPE rotation RMSE (deg)")                                                  \
+  X(kPathLengthM, "path_length_m", "Path length (m)")                                                      \
+  X(kEndGapM, "end_gap_m", "Start-to-end gap (m)")                                                         \
+  X(kDriftPct, "drift_pct", "Gap / path length (%)")                                                       \
+  X(kTimeMeanUs, "time_mean_us", "Time per frame (us)")                                                    \
+  X(kTimeMedianUs, "time_median_us", "Median time per frame (us)")                                         \
+  X(kFeaturesUsed, "features_used", "Features used per frame")                                             \
+  X(kFeaturesAvailable, "features_available", "Features available per frame")                              \
+  X(kNewReferences, "new_references", "New reference pairs")                                               \
+  X(kLostFrames, "lost_frames", "Lost frames")                                                             \
+  X(kNewRefFewFeatures, "new_ref_few_features", "New reference pairs: fewer than min_features left")       \
+  X(kNewRefFeatureFraction, "new_ref_feature_fraction", "New reference pairs: below min_feature_fraction") \
+  X(kLostFewMeasurable, "lost_few_measurable", "Lost frames: too few measurable features")                 \
+  X(kLostFewInsideGate, "lost_few_inside_gate", "Lost frames: too few features inside the gate")           \
+  X(kLostNoUpdate, "lost_no_update", "Lost frames: no update solution")                                    \
+  X(kLostNonFinite, "lost_non_finite", "Lost frames: non-finite state")                                    \
+  X(kLostUnconstrained, "lost_unconstrained", "Lost frames: a pose direction not measured")                \
+  X(kLostFewAgree, "lost_few_agree", "Lost frames: under a quarter of the features agree")                 \
+  X(kFeaturesUnmatched, "features_unmatched", "Reference features not matched in both images, per frame")  \
+  X(kFeaturesDegenerate, "features_degenerate", "Degenerate features per frame")                           \
+  X(kFeaturesOutsideGate, "features_outside_gate", "Measurable features outside the gate, per frame")      \
+  X(kDegradedFrames, "degraded_frames", "Degraded frames")                                                 \
+  X(kNees, "nees", "NEES (6 dof, mean)")                                                                   \
+  X(kNeesRot, "nees_rot", "NEES orientation (3 dof)")                                                      \
+  X(kNeesPos, "nees_pos", "NEES position (3 dof)")                                                         \
+  X(kBeyond3SigmaPct, "beyond_3sigma_pct", "Errors beyond 3 sigma (%)")
+
 enum TrialMetric {
-  kRotErrDeg,          // rotation error at the metrics frame (the paper's accumulated error)
-  kTransErrM,          // translation error at the metrics frame
-  kFinalRotErrDeg,     // at the last frame
-  kFinalTransErrM,
-  kAteTransM,          // ATE RMSE over all frames
-  kAteRotDeg,
-  kMaxTransErrM,       // largest translation error over all frames (the ATE's max)
-  kMaxRotErrDeg,       // largest rotation error over all frames
-  kRpeTransM,          // RPE RMSE, delta = 1 frame
-  kRpeRotDeg,
-  kPathLengthM,        // length of the ground-truth path
-  kEndGapM,            // distance between the estimated first and last camera centres
-  kDriftPct,           // 100 * end_gap_m / path_length_m (closed loops: the paper's drift)
-  kTimeMeanUs,         // mean wall time of one Track() call
-  kTimeMedianUs,       // median wall time of one Track() call
-  kFeaturesUsed,       // mean over frames of TrackerOutput::features_used
-  kFeaturesAvailable,  // mean over frames of TrackerOutput::features_available
-  kNewReferences,       // frames after the first with status kNewReference (new reference pairs)
-  kLostFrames,         // frames with status kLost
-  // Frames by TrackerOutput::reason (methods/pose_tracker.h): why a frame took a new reference
-  // pair (the first frame not counted) or was lost.
-  kNewRefFewFeatures,      // fewer reference features left than min_features
-  kNewRefFeatureFraction,  // fewer left than min_feature_fraction of the reference's
-  kLostFewMeasurable,      // fewer than two features matched in both images and measurable
-  kLostFewInsideGate,      // fewer than two measurable features inside the gate
-  kLostNoUpdate,           // the update found no solution
-  kLostNonFinite,          // the state became non-finite
-  kLostUnconstrained,      // the features used do not measure every pose direction
-  kLostFewAgree,           // under a quarter of the measurable features agree with the pose
-  // Mean over frames of the reference features left out of the update, by reason.
-  kFeaturesUnmatched,      // not observed in both images
-  kFeaturesDegenerate,     // no usable measurement
-  kFeaturesOutsideGate,    // measurable, not in the update
-  kDegradedFrames,     // frames with status kDegraded
-  kNees,               // mean over frames of the 6-dof NEES of the reported covariance
-  kNeesRot,            // the same, orientation only (3 dof)
-  kNeesPos,            // the same, position only (3 dof)
-  kBeyond3SigmaPct,    // % of (frame, axis) errors beyond 3 reported sigma (6 axes per frame)
+#define SLT_METRIC_ENUMERATOR(id, name, title) id,
+  SLT_TRIAL_METRICS(SLT_METRIC_ENUMERATOR)
+#undef SLT_METRIC_ENUMERATOR
   kNumTrialMetrics
 };
 
+// The CSV column of a metric ("unknown" out of range); -1 for an unknown name.
 const char* TrialMetricName(int metric);
-// -1 when unknown.
 int TrialMetricFromName(const std::string& name);
-// True for the columns that measure time (they differ from run to run).
-inline bool IsTimingMetric(int metric) { return metric == kTimeMeanUs || metric == kTimeMedianUs; }
 
 struct TrialResult {
   size_t method_index = 0;  // into ExperimentConfig::methods

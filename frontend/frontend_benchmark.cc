@@ -179,6 +179,29 @@ void BM_NewReferenceFrame(benchmark::State& state) { FrameAfterFirst(state, true
 BENCHMARK(BM_SteadyFrame)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NewReferenceFrame)->Unit(benchmark::kMillisecond);
 
+// The first pair of a run (no live line: every detection is described and matched; nothing is
+// tracked): the new-reference frame's detection stages at their most work.
+void BM_FirstFrame(benchmark::State& state) {
+  const Pairs& pairs = RenderedPairs();
+  const FrontEndOptions& options = BenchmarkOptions();
+  FrontEndStageTimes times;
+  int live = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    StereoFrontEnd front_end(options, pairs.rig);
+    state.ResumeTiming();
+    live = static_cast<int>(front_end.Process(pairs.images[0][0], pairs.images[0][1], 0.0, true).left.size());
+    times += front_end.last_stats().times;
+  }
+  state.counters["lines"] = live;
+  const double per_ms = 1e3 / static_cast<double>(state.iterations());
+  state.counters["pyramids_ms"] = times.track * per_ms;
+  state.counters["detect_ms"] = times.detect * per_ms;
+  state.counters["describe_ms"] = times.describe * per_ms;
+  state.counters["match_ms"] = times.match * per_ms;
+}
+BENCHMARK(BM_FirstFrame)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace slt
 

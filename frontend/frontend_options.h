@@ -22,14 +22,26 @@ enum class LineDetectorType {
 };
 
 struct DetectionOptions {
-  // LSD by the measurements of docs/frontend.md: EDLines has its recall and is 4x faster, but
-  // its less precise segments gave 3.4 % wrong stereo matches (LSD 0.3 %) and 5x the ATE.
+  // LSD by the measurements of docs/frontend.md: EDLines is 2-3x faster and, snapped, as
+  // precise, but it gave trifocal_line_ekf a worse KITTI trajectory (0.48 m against 0.41 m).
   LineDetectorType detector = LineDetectorType::kLsd;
   // LSD's bound on the gradient quantisation error (von Gioi et al.; OpenCV's `quant`): pixels
-  // with a gradient magnitude below quant / sin(22.5 deg) are not used. 1 instead of OpenCV's
-  // 2 finds more low-contrast edges (corridor recall 0.81 -> 0.92) but made the end-to-end
-  // CI loop's ATE three times worse (docs/frontend.md): 2 stays.
-  double lsd_quant = 2.0;
+  // with a gradient magnitude below quant / sin(22.5 deg) are not used. Below OpenCV's 2 it
+  // finds more low-contrast edges; alone (quant 1) their imprecision cost stereo matches and
+  // the end-to-end loop's ATE, with snap_detections 1.5 gains corridor recall at no cost
+  // (docs/frontend.md).
+  double lsd_quant = 1.5;
+  // LSD's working scale (OpenCV's `scale`, its default 0.8): the image is Gaussian-filtered
+  // (sigma = 0.6 / scale) and resampled by it before detection, the segments scaled back. 0.6
+  // detects in 0.56 x the pixels of 0.8 (about 40 % less time); the coarser segments are made
+  // precise by snap_detections.
+  double lsd_scale = 0.6;
+  // LSD's refinement (OpenCV's LSD_REFINE_STD: arcs split into straight pieces) or none.
+  bool lsd_refine = true;
+  // Move each detected segment onto the image's edge by the tracker's edge snap
+  // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not
+  // when the snap is off (tracking.snap_radius_px 0).
+  bool snap_detections = true;
   // Segments shorter than this (after merging) are dropped: too short to track or describe.
   double min_length_px = 30.0;
   // Collinear fragments are merged when their directions differ by less than merge_angle_deg,

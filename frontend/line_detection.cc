@@ -19,10 +19,12 @@ Segment2d ToSegment(const cv::Vec4f& v) { return Segment2d(v[0], v[1], v[2], v[3
 
 class LsdDetector : public LineDetector {
  public:
-  // OpenCV's defaults (scale 0.8, sigma_scale 0.6, ang_th 22.5 deg) but the gradient
-  // quantisation bound `quant` (OpenCV's default 2), which sets the smallest gradient
-  // magnitude LSD considers: DetectionOptions::lsd_quant.
-  explicit LsdDetector(double quant) : lsd_(cv::createLineSegmentDetector(cv::LSD_REFINE_STD, 0.8, 0.6, quant)) {}
+  // OpenCV's sigma_scale 0.6 and ang_th 22.5 deg; the working scale, the refinement and the
+  // gradient quantisation bound `quant` (which sets the smallest gradient magnitude LSD
+  // considers) from DetectionOptions (lsd_scale, lsd_refine, lsd_quant).
+  explicit LsdDetector(const DetectionOptions& options)
+      : lsd_(cv::createLineSegmentDetector(options.lsd_refine ? cv::LSD_REFINE_STD : cv::LSD_REFINE_NONE,
+                                           options.lsd_scale, 0.6, options.lsd_quant)) {}
   void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) override {
     lines_.clear();
     lsd_->detect(grey, lines_);
@@ -140,7 +142,7 @@ class CannyHoughDetector : public LineDetector {
 
 std::unique_ptr<LineDetector> MakeLineDetector(const DetectionOptions& options) {
   switch (options.detector) {
-    case LineDetectorType::kLsd: return std::make_unique<LsdDetector>(options.lsd_quant);
+    case LineDetectorType::kLsd: return std::make_unique<LsdDetector>(options);
     case LineDetectorType::kEdlines: return std::make_unique<EdlinesDetector>();
     case LineDetectorType::kFld: return std::make_unique<FldDetector>();
     case LineDetectorType::kBinaryDescriptor: return std::make_unique<BinaryDescriptorDetector>();

@@ -182,6 +182,18 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   return true;
 }
 
+void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
+                    std::vector<ImageLine>* lines, SnapWorkspace* workspace) {
+  const double min_sq = min_length_px * min_length_px;
+  size_t kept = 0;
+  for (ImageLine& line : *lines) {
+    if (!SnapSegmentToEdges(options, derivatives, &line.segment, workspace)) continue;
+    if ((line.segment.tail<2>() - line.segment.head<2>()).squaredNorm() < min_sq) continue;
+    (*lines)[kept++] = line;
+  }
+  lines->resize(kept);
+}
+
 LineFlowTracker::LineFlowTracker(const TrackingOptions& options, std::uint64_t seed)
     : options_(options), ransac_(seed) {}
 

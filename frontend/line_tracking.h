@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "frontend/frontend_options.h"
+#include "frontend/line_detection.h"
 #include "geometry/line2d.h"
 #include "optim/ransac.h"
 
@@ -63,6 +64,13 @@ struct SnapWorkspace {
 };
 bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment,
                         SnapWorkspace* workspace);
+
+// Detected segments moved onto the image's edges by the snap above (a coarse, fast detection
+// made precise: DetectionOptions::snap_detections), in place; a segment the snap cannot place
+// or leaves shorter than min_length_px is dropped (it would be lost at its first tracked
+// frame). `derivatives` as above.
+void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
+                    std::vector<ImageLine>* lines, SnapWorkspace* workspace);
 
 class LineFlowTracker {
  public:

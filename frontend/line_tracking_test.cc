@@ -120,6 +120,31 @@ TEST(SnapSegmentToEdges, MovesASegmentOntoTheEdgeAndLosesItWithoutOne) {
   EXPECT_FALSE(SnapSegmentToEdges(options, pyramid[1], &flat, &workspace));
 }
 
+TEST(SnapDetections, MovesDetectionsOntoTheEdgeAndDropsThoseItCannotPlace) {
+  const Eigen::Vector2d p(150.3, 117.6), d = Eigen::Vector2d(1.0, 0.35).normalized(), n(-d.y(), d.x());
+  const cv::Mat image = StepEdgeImage(p, d);
+  TrackingOptions options;
+  LineFlowTracker tracker(options);
+  ImagePyramid pyramid;
+  tracker.BuildPyramid(image, &pyramid);
+  const auto line = [&](double offset, double half_length, float contrast) {
+    const Eigen::Vector2d a = p - half_length * d + offset * n, b = p + half_length * d + offset * n;
+    ImageLine l;
+    l.segment = Segment2d(a.x(), a.y(), b.x(), b.y());
+    l.contrast = contrast;
+    return l;
+  };
+  // 1.2 px off (kept, on the edge), 4 px off (outside the search: dropped), on the edge but
+  // 24 px long (under the 30-px minimum: dropped).
+  std::vector<ImageLine> lines = {line(4.0, 40.0, 1.0f), line(1.2, 40.0, 2.0f), line(0.0, 12.0, 3.0f)};
+  SnapWorkspace workspace;
+  SnapDetections(options, 30.0, pyramid[1], &lines, &workspace);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].contrast, 2.0f);
+  EXPECT_LT(DistanceToLine(lines[0].segment, p, d), 0.1);
+  EXPECT_GT((lines[0].segment.tail<2>() - lines[0].segment.head<2>()).dot(d), 0.0);  // orientation kept
+}
+
 TEST(LineFlowTracker, FollowsRenderedRoomEdgesOntoTheirTrueLines) {
   // Frames 0 and 3 of the room loop (about 3 cm and 1 deg apart: lines move by a few px), both
   // cameras: the visible ground-truth segments of frame 0 at least 40 px long, tracked into

@@ -1,15 +1,18 @@
 // measure_frontend: the image front end against the ground truth of rendered sequences
 // (issue 18's numbers; docs/frontend.md quotes the output in results/frontend/).
 //
-//   measure_frontend [--frames N] [--step K] [--method NAME] [--out DIR]
+//   measure_frontend [--frames N] [--step K] [--method NAME] [--config FILE] [--out DIR]
+//                    [--scene TEXT] [--skip-detectors | --skip-sequences]
 //
-// Three scenes are rendered in memory (render/, default image settings: noise, defocus blur,
+// Four scenes are rendered in memory (render/, default image settings: noise, defocus blur,
 // vignetting, exposure changes): the room loop at 752 x 480 (EuRoC's image size and focal
-// length), the corridor walked forward at 640 x 480 and the paper's scene and motion (Sec. 5.1)
-// at 640 x 480, N frames each. On the paper scene the "noisy" run below is the synthetic paper
+// length), the corridor walked forward at 640 x 480, the paper's scene and motion (Sec. 5.1)
+// at 640 x 480 and the room loop on the default 640 x 480 rig (a narrower view), N frames
+// each (--scene: those whose name contains TEXT). On the paper scene the "noisy" run below is the synthetic paper
 // protocol at the front end's noise level.
 //
-// 1. detectors.md: every detector of frontend/line_detection.h, with the front end's merging,
+// 1. detectors.md: every detector of frontend/line_detection.h, with --config's detection options
+//    (snap_detections on the derivatives of the flow's pyramid, whose building is not timed) and the front end's merging,
 //    length and contrast filters, on frames 0, K, 2K, ... of both (both cameras): recall = the
 //    fraction of the visible ground-truth segments at least 40 px long that a detection lies on
 //    (within 2 px and 2 deg, frontend_audit.h), precision = the fraction of detections that lie
@@ -23,6 +26,7 @@
 //    observations with Gaussian endpoint noise at the front end's measured RMS endpoint error,
 //    and the per-stage times of steady and new-reference frames.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
@@ -49,7 +53,8 @@ struct MeasuredScene {
 std::vector<MeasuredScene> Scenes(int frames) {
   return {{"room 752x480 (loop)", RenderedRoomConfig(frames, true)},
           {"corridor 640x480 (forward)", RenderedCorridorConfig(frames)},
-          {"paper scene 640x480 (paper motion)", RenderedPaperConfig(frames)}};
+          {"paper scene 640x480 (paper motion)", RenderedPaperConfig(frames)},
+          {"room 640x480 (loop, default rig)", RenderedRoomConfig(frames, false)}};
 }
 
 std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
@@ -62,7 +67,8 @@ std::string Format(const char* format, ...) {
   return buffer;
 }
 
-std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step) {
+std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, const FrontEndOptions& front_end_options) {
+  const DetectionOptions& base = front_end_options.detection;
   std::string table =
       "| scene | detector | images | GT segments >= 40 px | recall | precision | endpoint RMS, px | segments per image "
       "| ms per image |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -79,13 +85,25 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step) {
       }
     }
     for (const auto& [type, name] : LineDetectorNames()) {
-      DetectionOptions options;
+      DetectionOptions options = base;  // --config's detection options, each detector in turn
       options.detector = type;
       const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
       DetectionScore score;
+      const TrackingOptions tracking = front_end_options.tracking;
+      const LineFlowTracker flow(tracking);
+      ImagePyramid pyramid;
+      SnapWorkspace snap;
       for (size_t i = 0; i < images.size(); ++i) {
         const auto t0 = Clock::now();
-        const std::vector<ImageLine> lines = DetectLines(*detector, options, images[i]);
+        std::vector<ImageLine> lines = DetectLines(*detector, options, images[i]);
+        if (options.snap_detections && tracking.snap_radius_px > 0.0) {
+          // As the front end does (the derivatives of the flow pyramid, built there anyway, are
+          // not timed here).
+          const auto t1 = Clock::now();
+          flow.BuildPyramid(images[i], &pyramid, 0);
+          score.seconds -= std::chrono::duration<double>(Clock::now() - t1).count();
+          SnapDetections(tracking, options.min_length_px, pyramid[1], &lines, &snap);
+        }
         score.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
         const auto [k, c] = which[i];
         const StereoFrame& frame = sequence.sequence.frames[k];
@@ -207,28 +225,34 @@ int main(int argc, char** argv) {
   CLI::App app{"Measure the image front end on rendered sequences (results/frontend/)."};
   int frames = 200, step = 20;
   std::string method = "trifocal_line_ekf", out, config_path;
-  bool skip_detectors = false;
+  bool skip_detectors = false, skip_sequences = false;
+  std::string only_scene;
   app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
   app.add_option("--step", step, "Detector comparison on every step-th frame")->check(CLI::Range(1, 100000));
   app.add_option("--method", method, "Tracker paired with the front end");
   app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
   app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
+  app.add_flag("--skip-sequences", skip_sequences, "Only the detectors");
+  app.add_option("--scene", only_scene, "Only the scenes whose name contains this (room, corridor, paper)");
   CLI11_PARSE(app, argc, argv);
   try {
     cv::setNumThreads(1);
     const FrontEndOptions options =
         config_path.empty() ? FrontEndOptions() : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
-    const std::vector<MeasuredScene> scenes = Scenes(frames);
+    std::vector<MeasuredScene> scenes = Scenes(frames);
+    scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
+                                [&](const MeasuredScene& s) { return s.name.find(only_scene) == std::string::npos; }),
+                 scenes.end());
     const std::string header = Format("Generated by `measure_frontend --frames %d --step %d --method %s`.\n\n", frames,
                                       step, method.c_str());
-    const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, step);
-    const std::string sequences = header + SequenceTable(scenes, method, options);
+    const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, step, options);
+    const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, method, options);
     std::printf("%s\n%s", detectors.c_str(), sequences.c_str());
     if (!out.empty()) {
       std::filesystem::create_directories(out);
       if (!skip_detectors) WriteTextFileAtomically(out + "/detectors.md", detectors);
-      WriteTextFileAtomically(out + "/sequences.md", sequences);
+      if (!skip_sequences) WriteTextFileAtomically(out + "/sequences.md", sequences);
     }
     return 0;
   } catch (const std::exception& e) {

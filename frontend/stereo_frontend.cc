@@ -158,13 +158,14 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
   stats_.times.filter += Since(t0);
 }
 
-bool StereoFrontEnd::DuplicatesLiveLine(const Segment2d& left) const {
-  const Eigen::Vector2d a = left.head<2>(), b = left.tail<2>();
+bool StereoFrontEnd::DuplicatesLiveLine(const Segment2d& segment, int c) const {
+  const Eigen::Vector2d a = segment.head<2>(), b = segment.tail<2>();
   const Eigen::Vector2d d = (b - a).normalized();
   const double cos_max = std::cos(options_.duplicate_angle_deg * M_PI / 180.0);
   const double length = (b - a).norm();
   for (const LiveLine& live : live_) {
-    const Eigen::Vector2d p = live.left.head<2>(), q = live.left.tail<2>();
+    const Segment2d& s = c == 0 ? live.left : live.right;
+    const Eigen::Vector2d p = s.head<2>(), q = s.tail<2>();
     const Eigen::Vector2d e = (q - p).normalized();
     if (std::abs(d.dot(e)) < cos_max) continue;
     const Eigen::Vector2d n(-e.y(), e.x());
@@ -182,6 +183,22 @@ void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right) {
   Clock::time_point t0 = Clock::now();
   detections_[0] = DetectLines(*detector_, options_.detection, left);
   detections_[1] = DetectLines(*detector_, options_.detection, right);
+  if (options_.detection.snap_detections && options_.tracking.snap_radius_px > 0.0) {  // radius 0: no snap
+    for (int c = 0; c < 2; ++c) {
+      SnapDetections(options_.tracking, options_.detection.min_length_px, current_[c][1], &detections_[c], &snap_);
+    }
+  }
+  if (!stats_.rematch) {
+    // Detections on a live line would be dropped as duplicates after matching (AddNewLines):
+    // neither described nor matched. Not when re-matching, which looks for lost lines among
+    // all the detections.
+    for (int c = 0; c < 2; ++c) {
+      std::vector<ImageLine>& lines = detections_[c];
+      lines.erase(std::remove_if(lines.begin(), lines.end(),
+                                 [&](const ImageLine& line) { return DuplicatesLiveLine(line.segment, c); }),
+                  lines.end());
+    }
+  }
   stats_.detected_left = static_cast<int>(detections_[0].size());
   stats_.detected_right = static_cast<int>(detections_[1].size());
   stats_.times.detect += Since(t0);

@@ -111,7 +111,8 @@ class StereoFrontEnd {
   void Rematch();
   // New live lines from the matches that duplicate none.
   void AddNewLines();
-  bool DuplicatesLiveLine(const Segment2d& left) const;
+  // Whether `segment`, in camera c (0 = left), lies on the segment of a live line there.
+  bool DuplicatesLiveLine(const Segment2d& segment, int c = 0) const;
 
   FrontEndOptions options_;
   StereoRig rig_;
@@ -127,6 +128,7 @@ class StereoFrontEnd {
   FrontEndFrameStats stats_;
   // Workspace.
   std::vector<ImageLine> detections_[2];
+  SnapWorkspace snap_;
   std::vector<MsldDescriptor> descriptors_[2];
   std::vector<StereoMatch> matches_;
   std::vector<Segment2d> segments_[2], tracked_[2];

@@ -65,6 +65,25 @@ TEST(StereoFrontEnd, PredictedMotionSeedsTheFlowBeyondThePyramidsReach) {
   EXPECT_GE(seeded.correct, 0.95 * seeded.tracked) << seeded.correct << " of " << seeded.tracked;
 }
 
+TEST(StereoFrontEnd, DetectionsOnLiveLinesAreNotMatchedAgainAndTheSnapCanBeOff) {
+  const RenderedRoom room;
+  FrontEndOptions options;
+  StereoFrontEnd front_end(options, room.rig());
+  const int first = static_cast<int>(front_end.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true).left.size());
+  ASSERT_GE(first, 40);
+  const int detected_first = front_end.last_stats().detected_left;
+  // The same pair again with detection: the lines are live (tracked by a zero flow), so their
+  // detections are dropped before description and matching, and none is added twice.
+  front_end.Process(room.Image(0, 0), room.Image(0, 1), 1.0, true);
+  EXPECT_GE(front_end.last_stats().tracked, 0.9 * first);
+  EXPECT_LT(front_end.last_stats().detected_left, 0.5 * detected_first) << detected_first;
+  EXPECT_LT(front_end.last_stats().added, 0.1 * first);
+  // With the tracker's snap off (radius 0) the detections are not snapped, nor dropped.
+  options.tracking.snap_radius_px = 0.0;
+  StereoFrontEnd unsnapped(options, room.rig());
+  EXPECT_GE(unsnapped.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true).left.size(), 0.8 * first);
+}
+
 TEST(LineMotion, PlaneHomographiesMoveTheLinesPointsExactly) {
   // A 3-D line seen by the default rig, the camera moved by a large known motion: the maps
   // send the old images' points of the line onto the new images' line.

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
@@ -68,14 +69,7 @@ int main(int argc, char** argv) {
   app.add_option("--tracker-config", tracker_config_path, "Tracker options, JSON");
   app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, lines, detection, stage times");
   app.add_flag("--progress", progress_forced, "Show progress even when stderr is not a terminal");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "track_images: error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (const int exit_code = ParseCommandLine(app, argc, argv, "track_images"); exit_code >= 0) return exit_code;
 
   try {
     cv::setNumThreads(1);  // single thread, as measured

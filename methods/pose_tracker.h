@@ -103,6 +103,32 @@ struct TrackerOutput {
                                   // robust start's consensus, or re-gated at the solution
 };
 
+// A run's frames added up, frame by frame: frames by status and by reason, and the tracker's
+// feature counts summed over frames (track's summary, the experiments' per-trial metrics).
+struct RunCounts {
+  int frames = 0;
+  int by_status[kNumTrackingStatuses] = {};
+  int by_reason[kNumStatusReasons] = {};
+  long features_used = 0;
+  long features_available = 0;
+  long features_unmatched = 0;
+  long features_degenerate = 0;
+  long features_outside_gate = 0;
+
+  void Add(const TrackerOutput& out) {
+    ++frames;
+    ++by_status[static_cast<int>(out.status)];
+    ++by_reason[static_cast<int>(out.reason)];
+    features_used += out.features_used;
+    features_available += out.features_available;
+    features_unmatched += out.features_unmatched;
+    features_degenerate += out.features_degenerate;
+    features_outside_gate += out.features_outside_gate;
+  }
+  int Frames(TrackingStatus status) const { return by_status[static_cast<int>(status)]; }
+  int Frames(StatusReason reason) const { return by_reason[static_cast<int>(reason)]; }
+};
+
 class PoseTracker {
  public:
   virtual ~PoseTracker() = default;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/csv.h"
+#include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "dataset/stereo_lines_io.h"
@@ -33,14 +34,7 @@ int main(int argc, char** argv) {
   app.add_flag("--list", list, "List the registered trackers and exit");
   app.add_flag("--print-config", print_config, "Print the tracker's resolved options (JSON) and exit");
   app.add_flag("--list-options", list_options, "List the tracker's options (key, default, allowed values, doc) and exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "track: error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  if (const int exit_code = ParseCommandLine(app, argc, argv, "track"); exit_code >= 0) return exit_code;
 
   try {
     if (list) {
@@ -79,20 +73,14 @@ int main(int argc, char** argv) {
       for (int j = i; j < 6; ++j) log << ",cov_" << i << j;
     }
     log << "\n";
-    int counts[kNumTrackingStatuses] = {0, 0, 0, 0};
-    int by_reason[kNumStatusReasons] = {};
-    long unmatched = 0, degenerate = 0, outside_gate = 0;
+    RunCounts counts;
     double total_us = 0.0;
     StereoFrame frame;
     for (size_t k = 0; reader.Next(&frame); ++k) {
       const TrackedFrame tracked = TrackFrame(*tracker, frame);
       const TrackerOutput& out = tracked.output;
       total_us += tracked.time_us;
-      ++counts[static_cast<int>(out.status)];
-      ++by_reason[static_cast<int>(out.reason)];
-      unmatched += out.features_unmatched;
-      degenerate += out.features_degenerate;
-      outside_gate += out.features_outside_gate;
+      counts.Add(out);
       trajectory.push_back({frame.time, out.cam_from_world.Inverse()});
       log << k << "," << frame.time << "," << TrackingStatusName(out.status) << "," << StatusReasonName(out.reason) << ","
           << out.features_available << "," << out.features_used << "," << out.features_unmatched << ","
@@ -109,19 +97,22 @@ int main(int argc, char** argv) {
     if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
     std::fprintf(stderr,
                  "track: %s: %zu frames (%d tracking, %d new reference pairs, %d lost, %d degraded), %.1f us per frame\n",
-                 method.c_str(), trajectory.size(), counts[0], counts[1], counts[2], counts[3],
+                 method.c_str(), trajectory.size(), counts.Frames(TrackingStatus::kTracking),
+                 counts.Frames(TrackingStatus::kNewReference), counts.Frames(TrackingStatus::kLost),
+                 counts.Frames(TrackingStatus::kDegraded),
                  trajectory.empty() ? 0.0 : total_us / trajectory.size());
     // Why: frames by reason (the first frame's aside), then the features left out.
     std::string reasons;
     for (int r = static_cast<int>(StatusReason::kFewFeaturesLeft); r < kNumStatusReasons; ++r) {
-      if (by_reason[r] == 0) continue;
+      if (counts.by_reason[r] == 0) continue;
       reasons += std::string(reasons.empty() ? "" : ", ") + StatusReasonName(static_cast<StatusReason>(r)) + " " +
-                 std::to_string(by_reason[r]);
+                 std::to_string(counts.by_reason[r]);
     }
     std::fprintf(stderr,
                  "track: reasons: %s; features left out over all frames: %ld not matched in both images, "
                  "%ld degenerate, %ld outside the gate\n",
-                 reasons.empty() ? "none" : reasons.c_str(), unmatched, degenerate, outside_gate);
+                 reasons.empty() ? "none" : reasons.c_str(), counts.features_unmatched, counts.features_degenerate,
+                 counts.features_outside_gate);
     return 0;
   } catch (const CLI::Error& e) {
     std::fprintf(stderr, "track: error: %s\n", e.what());

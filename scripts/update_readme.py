@@ -308,6 +308,31 @@ def focal_200(r):
     return text
 
 
+def taylor_fig6(r):
+    """Taylor & Kriegman at frame 100 of Fig. 6 (5 and 20 frames), placed against the EKFs."""
+    def at(method, endpoints):
+        rot = r.value("error_vs_frame", method, "rot_err_deg_mean", **{"noise.endpoints": endpoints})
+        trans = r.value("error_vs_frame", method, "trans_err_m_mean", **{"noise.endpoints": endpoints})
+        return rot, trans
+
+    def pair(v):
+        return "%s / %s" % (deg(v[0]), mm(v[1]))
+
+    def side(v, other):
+        if v[0] > other[0] and v[1] > other[1]:
+            return "above"
+        if v[0] < other[0] and v[1] < other[1]:
+            return "below"
+        return "between in rotation and translation"
+
+    k5, k20 = "taylor_line_sfm", "taylor_line_sfm (K = 20)"
+    improved, faithful = at(DEFAULT, "fixed"), at(FAITHFUL, "fixed")
+    return ("it reaches %s at frame 100 with 5 frames and %s with 20 (sliding endpoints: %s and %s): "
+            "%s the improved trifocal EKF (%s), %s the faithful one (%s)" % (
+                pair(at(k5, "fixed")), pair(at(k20, "fixed")), pair(at(k5, "sliding")), pair(at(k20, "sliding")),
+                side(at(k5, "fixed"), improved), pair(improved), side(at(k5, "fixed"), faithful), pair(faithful)))
+
+
 GENERATORS = {
     "fig4_table": fig4_table,
     "fig4_noise_free": fig4_noise_free,
@@ -325,6 +350,7 @@ GENERATORS = {
     "fixed_endpoints": endpoints_comparison("fixed"),
     "sliding_endpoints": sliding_comparison,
     "focal_200": focal_200,
+    "taylor_fig6": taylor_fig6,
 }
 
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/machine_info.h"
@@ -59,8 +60,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Render threads (default: all cores); the images do not depend on it")
       ->check(CLI::Range(0, 4096));
   std::optional<std::uint64_t> seed;
-  try {
-    app.parse(argc, argv);
+  const int exit_code = ParseCommandLine(app, argc, argv, "simulate", [&] {
     if (!seed_text.empty()) {
       std::size_t end = 0;
       try {
@@ -72,12 +72,8 @@ int main(int argc, char** argv) {
         throw CLI::ValidationError("--seed", "expected an integer in [0, 2^64-1], got '" + seed_text + "'");
       }
     }
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "simulate: error: %s (see --help)\n", e.what());
-    return 2;
-  }
+  });
+  if (exit_code >= 0) return exit_code;
 
   try {
     nlohmann::json document = nlohmann::json::object();

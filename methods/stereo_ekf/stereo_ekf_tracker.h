@@ -24,6 +24,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "methods/pose_tracker.h"
@@ -197,6 +199,26 @@ std::vector<OptionDoc> StereoEkfOptionDocs(const OptionSchema<MeasurementOptions
   StereoEkfOptionsSchema().List(StereoEkfOptions(), "filter", &docs);
   measurement.List(MeasurementOptions(), "measurement", &docs);
   return docs;
+}
+
+// The TrackerInfo of a stereo EKF tracker on the measurement model `Model` (constructed from its
+// MeasurementOptions): created by CreateStereoEkfTracker, listed by StereoEkfOptionDocs. What
+// the trifocal-line and the point-trifocal EKF register.
+template <typename Model, typename MeasurementOptions, typename PaperMeasurement>
+TrackerInfo StereoEkfTrackerInfo(std::string name, std::string description, PaperMeasurement paper_measurement,
+                                 void (*read_measurement)(JsonReader&, MeasurementOptions*),
+                                 nlohmann::json (*to_json)(const MeasurementOptions&),
+                                 const OptionSchema<MeasurementOptions>& (*schema)()) {
+  TrackerInfo info;
+  info.name = std::move(name);
+  info.description = std::move(description);
+  info.create = [=](const nlohmann::json& json, const std::string& where) {
+    return CreateStereoEkfTracker<MeasurementOptions>(
+        json, where, paper_measurement, read_measurement, to_json,
+        [](const MeasurementOptions& m) { return std::make_unique<Model>(m); });
+  };
+  info.list_options = [schema] { return StereoEkfOptionDocs(schema()); };
+  return info;
 }
 
 }  // namespace slt

@@ -1,6 +1,7 @@
 // For the feature models' tests (not linked into the trackers): a few 3-D segments in front of
 // a rig, projected into a stereo frame with ids 10, 13, 16, 19 and the endpoints in the same
-// order in both images (as the simulator writes them); a small motion; a pose near another.
+// order in both images (as the simulator writes them); a small motion; a pose near another; a
+// feature model evaluated on a pair of frames.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 
 #include "dataset/stereo_sequence.h"
 #include "geometry/se3.h"
+#include "methods/stereo_ekf/feature_model.h"
 
 namespace slt {
 
@@ -45,6 +47,20 @@ inline Rigid3d SomeMotion() {
 // A pose near `truth` where a feature's residual and Jacobian are checked away from the truth.
 inline Rigid3d NearTruth(const Rigid3d& truth) {
   return ExpSE3((Vector6d() << 0.002, 0.001, -0.003, 0.004, -0.002, 0.003).finished()) * truth;
+}
+
+// Feature `index` of a new Model (a FeatureModel) on the reference and current frames, at
+// `cam_from_ref`: what the numeric derivatives over the observations evaluate once per step.
+// False when the model has no block there.
+template <typename Model, typename Options>
+bool EvaluateOnFrames(const Options& options, const StereoRig& rig, const StereoFrame& reference,
+                      const StereoFrame& current, int index, const Rigid3d& cam_from_ref, bool with_covariance,
+                      FeatureBlock* block) {
+  Model model(options);
+  model.Reset(rig);
+  model.SetReference(reference);
+  model.SetCurrent(current);
+  return model.Evaluate(index, cam_from_ref, with_covariance, block);
 }
 
 }  // namespace slt

@@ -62,15 +62,11 @@ TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
   TinyScene scene;
   LineTransferOptions options = Options(direction, residual);
   options.endpoint_sigma_px = 1.3;
-  LineTransferModel model(options);
-  model.Reset(scene.rig);
   const Rigid3d truth = SomeMotion();
   const StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(truth);
-  model.SetReference(ref);
-  model.SetCurrent(cur);
   const int feature = 1;
   FeatureBlock block;
-  ASSERT_TRUE(model.Evaluate(feature, truth, true, &block));
+  ASSERT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, ref, cur, feature, truth, true, &block));
   // Perturb each of the 16 endpoint coordinates of the feature's four segments.
   const auto residual_of = [&](const Eigen::Matrix<double, 16, 1>& x) -> Eigen::Vector4d {
     StereoFrame r = ref, c = cur;
@@ -78,12 +74,8 @@ TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
     r.right[feature].segment = x.segment<4>(4);
     c.left[feature].segment = x.segment<4>(8);
     c.right[feature].segment = x.segment<4>(12);
-    LineTransferModel m(options);
-    m.Reset(scene.rig);
-    m.SetReference(r);
-    m.SetCurrent(c);
     FeatureBlock b;
-    EXPECT_TRUE(m.Evaluate(feature, truth, false, &b));
+    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, r, c, feature, truth, false, &b));
     return b.residual;
   };
   Eigen::Matrix<double, 16, 1> x;

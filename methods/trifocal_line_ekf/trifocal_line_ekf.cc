@@ -6,39 +6,30 @@
 namespace slt {
 namespace {
 
-std::unique_ptr<PoseTracker> Create(const nlohmann::json& json, const std::string& where) {
-  return CreateStereoEkfTracker<LineTransferOptions>(
-      json, where,
-      [](LineTransferOptions* m) {
-        // The paper's measurement: current lines transferred into the reference view (eq. 16),
-        // compared in (theta, lambda) (eq. 8-9) with a fixed R; lines near the trifocal plane
-        // excluded (Sec. 4).
-        m->residual = LineResidual::kThetaLambda;
-        m->noise = MeasurementNoise::kFixed;
-        // The paper does not state R's values ("the covariance of the measurement noise").
-        // These are the robust spread (1.4826 x median absolute value) of each residual at the
-        // true pose under the paper protocol's +-2.5 px noise: 0.0117 rad and 1.89 px over 40
-        // seeds (tests/trifocal_line_ekf_accuracy_test.cc re-measures them). The earlier guess,
-        // 0.005 rad, made the angles 2.4x too tight: 0.443 deg at frame 100 instead of 0.364
-        // over 1 200 trials (results/faithful_fixed_r).
-        m->fixed_sigma_rad = 0.012;
-        m->fixed_sigma_px = 1.9;
-        m->direction = TransferDirection::kCurrentToReference;
-        m->min_plane_angle_deg = 3.0;
-      },
-      ReadLineTransferOptions, LineTransferOptionsToJson,
-      [](const LineTransferOptions& m) { return std::make_unique<LineTransferModel>(m); });
+// The paper's measurement: current lines transferred into the reference view (eq. 16),
+// compared in (theta, lambda) (eq. 8-9) with a fixed R; lines near the trifocal plane excluded
+// (Sec. 4).
+void PaperMeasurement(LineTransferOptions* m) {
+  m->residual = LineResidual::kThetaLambda;
+  m->noise = MeasurementNoise::kFixed;
+  // The paper does not state R's values ("the covariance of the measurement noise").
+  // These are the robust spread (1.4826 x median absolute value) of each residual at the
+  // true pose under the paper protocol's +-2.5 px noise: 0.0117 rad and 1.89 px over 40
+  // seeds (tests/trifocal_line_ekf_accuracy_test.cc re-measures them). The earlier guess,
+  // 0.005 rad, made the angles 2.4x too tight: 0.443 deg at frame 100 instead of 0.364
+  // over 1 200 trials (results/faithful_fixed_r).
+  m->fixed_sigma_rad = 0.012;
+  m->fixed_sigma_px = 1.9;
+  m->direction = TransferDirection::kCurrentToReference;
+  m->min_plane_angle_deg = 3.0;
 }
 
 }  // namespace
 
 TrackerInfo TrifocalLineEkfInfo() {
-  TrackerInfo info;
-  info.name = "trifocal_line_ekf";
-  info.description = "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)";
-  info.create = Create;
-  info.list_options = [] { return StereoEkfOptionDocs(LineTransferOptionsSchema()); };
-  return info;
+  return StereoEkfTrackerInfo<LineTransferModel>(
+      "trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)", PaperMeasurement,
+      ReadLineTransferOptions, LineTransferOptionsToJson, LineTransferOptionsSchema);
 }
 
 }  // namespace slt

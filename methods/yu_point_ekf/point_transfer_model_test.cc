@@ -136,12 +136,8 @@ TEST_P(PointTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) 
       r.right[line].segment.segment<2>(2 * k) = p.segment<2>(2);
       c.left[line].segment.segment<2>(2 * k) = p.segment<2>(4);
       c.right[line].segment.segment<2>(2 * k) = p.segment<2>(6);
-      PointTransferModel m(options);
-      m.Reset(scene.rig);
-      m.SetReference(r);
-      m.SetCurrent(c);
       FeatureBlock b;
-      EXPECT_TRUE(m.Evaluate(feature, at, false, &b));
+      EXPECT_TRUE(EvaluateOnFrames<PointTransferModel>(options, scene.rig, r, c, feature, at, false, &b));
       return b.residual;
     };
     Eigen::Matrix<double, 8, 1> p;
