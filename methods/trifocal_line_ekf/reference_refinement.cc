@@ -47,10 +47,10 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)")
-          .Field("triangulated_max_sigma_m", &O::triangulated_max_sigma_m, Positive(),
-                 "a triangulated line reaches the filter once its position's largest standard deviation is at most this")
-          .Field("triangulated_gate_probability", &O::triangulated_gate_probability, InRange(0.0, 1.0, "()"),
-                 "a triangulated line reaches the filter once its residuals pass the chi-square test at this probability");
+          .Field("triangulated_max_sigma_m", &O::triangulated_max_sigma_m, AtLeast(0.0),
+                 "a triangulated line reaches the filter once its position's largest standard deviation is at most this (0 = no bound)")
+          .Field("triangulated_gate_probability", &O::triangulated_gate_probability, InRange(0.0, 1.0, "[)"),
+                 "a triangulated line reaches the filter once its residuals pass the chi-square test at this probability (0 = no test)");
   return schema;
 }
 
@@ -427,9 +427,11 @@ void ReferenceRefiner::RefineTriangulatedLines(const PoseOf& pose_of, const Offs
       const double sigma_m = std::sqrt(std::max(
           0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(l.covariance.bottomRightCorner<2, 2>()).eigenvalues()(1)));
       const int dof = 2 * segments - 4;
+      const double max_sigma_m = options_.triangulated_max_sigma_m;
+      const double probability = options_.triangulated_gate_probability;
       pass = l.covariance.allFinite() && l.covariance.diagonal().minCoeff() > 0.0 &&
-             sigma_m <= options_.triangulated_max_sigma_m && dof >= 1 &&
-             sum <= ChiSquareQuantile(options_.triangulated_gate_probability, dof);
+             (max_sigma_m == 0.0 || sigma_m <= max_sigma_m) &&
+             (probability == 0.0 || (dof >= 1 && sum <= ChiSquareQuantile(probability, dof)));
     }
     l.held_back = !pass && l.refined;
     l.refined = pass;

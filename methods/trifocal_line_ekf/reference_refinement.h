@@ -82,9 +82,10 @@ struct ReferenceRefinementOptions {
   // moment part, its marginal covariance from the solve, at most triangulated_max_sigma_m) and
   // its whitened residuals over the reference and the keyframes pass a chi-square test
   // (sum <= the triangulated_gate_probability quantile, 2 dof per segment minus 4). Otherwise it
-  // stays in the solve but the filter does not measure it.
-  double triangulated_max_sigma_m = 0.01;
-  double triangulated_gate_probability = 0.99;
+  // stays in its solve but the filter does not measure it. 0 = no bound / no test (the
+  // defaults: on the room loop the gate, 5 cm and 0.99, made the ATE worse; docs/long_sequences.md).
+  double triangulated_max_sigma_m = 0.0;
+  double triangulated_gate_probability = 0.0;
   // A new reference pair starts from the refined lines it shares with the previous one, moved
   // into its frame with the current pose and kept as priors (SetCarriedLine), instead of their
   // stereo triangulation from the new pair alone.

@@ -69,7 +69,6 @@ TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulates
   options.enabled = true;
   options.keyframe_interval = 1;
   options.min_triangulation_angle_deg = 2.0;
-  options.triangulated_max_sigma_m = 1.0;  // the gate: GateHoldsBack... below
   ReferenceRefiner refiner(options, 1.0);
   refiner.Reset(rig);
   refiner.StartReference(static_cast<int>(kLines.size()));
@@ -119,6 +118,7 @@ bool DegenerateLinePassesGate(double max_sigma_m, double jitter_px) {
   options.keyframe_interval = 1;
   options.min_triangulation_angle_deg = 2.0;
   options.triangulated_max_sigma_m = max_sigma_m;
+  options.triangulated_gate_probability = 0.99;
   ReferenceRefiner refiner(options, 1.0);
   refiner.Reset(rig);
   refiner.StartReference(static_cast<int>(kLines.size()));
