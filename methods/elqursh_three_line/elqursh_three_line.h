@@ -69,6 +69,11 @@ struct ElqurshThreeLineOptions {
   // Lost frames measured against one reference before the current frame replaces it (0 = the
   // paper's rule: always the previous frame).
   int max_lost_frames = 10;
+  // A lost frame's pose is the constant-velocity prediction from the last measured
+  // frame-to-frame motion, its velocity multiplied by this factor on every lost frame (the
+  // trackers' common policy, methods/stereo_ekf and taylor_line_sfm); 1 = coast at constant
+  // velocity, 0 = hold the last pose.
+  double lost_velocity_decay = 0.5;
   // Lines: stereo pairs within this angle of the epipolar direction do not define a 3-D line
   // and are not used (LineTransferOptions).
   double min_epipolar_angle_deg = 3.0;
