@@ -12,6 +12,7 @@
 
 #include "common/json_reader.h"
 #include "geometry/se3.h"
+#include "methods/elqursh_three_line/three_line_test_data.h"
 #include "tests/test_support.h"
 
 namespace slt {
@@ -116,16 +117,7 @@ TEST(ElqurshThreeLine, WithoutAConfigurationEveryFrameIsLostAndThePoseHeld) {
   // Noise-free random lines of which no two are within 20 degrees of parallel: nothing to
   // start from, whatever the motion.
   const SimulatedSequence sim = Simulated({{"seed", 1}, {"noise", {{"endpoint_px", 0.0}}}});
-  std::vector<std::int64_t> ids;
-  std::vector<Eigen::Vector3d> directions;
-  for (size_t i = 0; i < sim.lines.size(); ++i) {
-    const Eigen::Vector3d d = (sim.lines[i].q - sim.lines[i].p).normalized();
-    bool distinct = true;
-    for (const Eigen::Vector3d& other : directions) distinct = distinct && d.cross(other).norm() > std::sin(20.0 * M_PI / 180.0);
-    if (!distinct) continue;
-    ids.push_back(static_cast<std::int64_t>(i));
-    directions.push_back(d);
-  }
+  const std::vector<std::int64_t> ids = three_line_test::LinesWithoutAConfiguration(sim.lines);
   ASSERT_GE(ids.size(), 10u);
   const TrackRun run = Track(KeepLines(sim.sequence, ids));
   for (size_t k = 1; k < run.outputs.size(); ++k) {

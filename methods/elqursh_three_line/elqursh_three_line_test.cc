@@ -15,6 +15,7 @@
 
 #include "common/json_reader.h"
 #include "geometry/se3.h"
+#include "methods/elqursh_three_line/three_line_test_data.h"
 #include "simulator/simulation_config.h"
 #include "simulator/simulator.h"
 
@@ -30,22 +31,8 @@ SimulatedSequence CuboidScene() {
       {{"seed", 5}, {"scene", {{"paper", {{"cuboid_fraction", 0.3}}}}}, {"noise", {{"endpoint_px", 0.0}}}}, "test"));
 }
 
-// Lines of which no two are within 20 deg of parallel: no candidate configuration among them.
-std::vector<std::int64_t> LinesWithoutAConfiguration(const SimulatedSequence& sim) {
-  std::vector<std::int64_t> ids;
-  std::vector<Eigen::Vector3d> directions;
-  for (size_t i = 0; i < sim.lines.size(); ++i) {
-    const Eigen::Vector3d d = (sim.lines[i].q - sim.lines[i].p).normalized();
-    bool distinct = true;
-    for (const Eigen::Vector3d& other : directions) distinct = distinct && d.cross(other).norm() > std::sin(20.0 * M_PI / 180.0);
-    if (!distinct) continue;
-    ids.push_back(static_cast<std::int64_t>(i));
-    directions.push_back(d);
-  }
-  return ids;
-}
-
-// What an image front end does when a frame's detections miss most lines (KITTI, docs/baselines.md):
+// What an image front end does when a frame's detections miss most lines (KITTI,
+// docs/baselines.md):
 // frame kDrop keeps only `kept`; the other lines are found again from frame kDrop + 1 on, as new
 // tracks (new ids), so that no later frame matches them with a reference before kDrop + 1.
 StereoSequence DropConfigurationsForOneFrame(const StereoSequence& sequence, const std::vector<std::int64_t>& kept) {
@@ -54,8 +41,8 @@ StereoSequence DropConfigurationsForOneFrame(const StereoSequence& sequence, con
   for (size_t k = kDrop; k < out.frames.size(); ++k) {
     for (std::vector<LineObservation>* side : {&out.frames[k].left, &out.frames[k].right}) {
       if (static_cast<int>(k) == kDrop) {
-        side->erase(std::remove_if(side->begin(), side->end(), [&](const LineObservation& o) { return !is_kept(o.id); }),
-                    side->end());
+        const auto dropped = [&](const LineObservation& o) { return !is_kept(o.id); };
+        side->erase(std::remove_if(side->begin(), side->end(), dropped), side->end());
       } else {
         for (LineObservation& o : *side) o.id += is_kept(o.id) ? 0 : kNewId;
       }
@@ -84,7 +71,7 @@ std::pair<double, double> StepError(const SimulatedSequence& sim, const std::vec
 
 TEST(ElqurshThreeLineTracker, AReferenceWithoutAConfigurationIsReplacedAtOnce) {
   const SimulatedSequence sim = CuboidScene();
-  const std::vector<std::int64_t> kept = LinesWithoutAConfiguration(sim);
+  const std::vector<std::int64_t> kept = three_line_test::LinesWithoutAConfiguration(sim.lines);
   ASSERT_GE(kept.size(), 10u);
   const std::vector<TrackerOutput> out = TrackAll(DropConfigurationsForOneFrame(sim.sequence, kept));
   ASSERT_EQ(out.size(), sim.sequence.frames.size());
@@ -107,7 +94,8 @@ TEST(ElqurshThreeLineTracker, AReferenceWithoutAConfigurationIsReplacedAtOnce) {
 
 TEST(ElqurshThreeLineTracker, ALostFramesPoseIsTheConstantVelocityPrediction) {
   const SimulatedSequence sim = CuboidScene();
-  const StereoSequence sequence = DropConfigurationsForOneFrame(sim.sequence, LinesWithoutAConfiguration(sim));
+  const StereoSequence sequence =
+      DropConfigurationsForOneFrame(sim.sequence, three_line_test::LinesWithoutAConfiguration(sim.lines));
   for (double decay : {0.0, 0.5, 1.0}) {
     const std::vector<TrackerOutput> out = TrackAll(sequence, {{"lost_velocity_decay", decay}});
     // The velocity: the motion measured last (frame kDrop - 1 against kDrop - 2), times the
