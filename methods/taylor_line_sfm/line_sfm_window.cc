@@ -1,13 +1,12 @@
 #include "methods/taylor_line_sfm/line_sfm_window.h"
 
-#include <glog/logging.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include "dataset/association.h"
 #include "geometry/plucker.h"
+#include "optim/ceres_logging.h"
 
 namespace slt {
 namespace {
@@ -30,18 +29,6 @@ int Root(std::vector<int>& parent, int i) {
 double DepthOnLine(const PinholeCamera& camera, const Eigen::Vector2d& x, const PlueckerLine& line) {
   const Eigen::Vector3d r_cross_d = Homogeneous(camera.PixelToNormalized(x)).cross(line.direction);
   return r_cross_d.dot(line.moment) / r_cross_d.squaredNorm();
-}
-
-// Ceres reports a linear solve that failed (a step it then retries with more damping) as a glog
-// WARNING on stderr. With outliers, the robust loss can leave a line or a pose with nearly no
-// weight and the reduced system not numerically positive definite, often enough to flood the
-// experiments' output: only errors are shown. Set once, before any of this tracker's solves.
-void ShowOnlyCeresErrors() {
-  static const bool once = [] {
-    if (FLAGS_minloglevel < google::GLOG_ERROR) FLAGS_minloglevel = google::GLOG_ERROR;
-    return true;
-  }();
-  (void)once;
 }
 
 }  // namespace

@@ -409,7 +409,7 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
   if (!refiner_) return false;
   last_cam_from_ref_ = cam_from_ref;
   last_pose_valid_ = true;
-  if (!refiner_->CountFrame()) return false;
+  if (!refiner_->CountFrame(cam_from_ref)) return false;
   // The features of the update, and the lines not measured yet because the reference pair
   // does not define them (the refinement triangulates them from the keyframes).
   keyframe_observations_.clear();

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include "optim/ceres_logging.h"
+
 namespace slt {
 namespace {
 
@@ -32,7 +34,9 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
       OptionSchema<O>()
           .Field("enabled", &O::enabled,
                  "refine the reference lines jointly with keyframe poses (direction reference_to_current only)")
-          .Field("keyframe_interval", &O::keyframe_interval, AtLeast(1), "measured frames between keyframes")
+          .Field("keyframe_interval", &O::keyframe_interval, AtLeast(1), "measured frames between keyframes (at least)")
+          .Field("keyframe_min_distance_m", &O::keyframe_min_distance_m, AtLeast(0.0),
+                 "a keyframe also needs the camera this far from the previous keyframe (0 = by count only)")
           .Field("max_keyframes", &O::max_keyframes, AtLeast(1), "keyframes kept in the refinement window")
           .Field("max_iterations", &O::max_iterations, AtLeast(1), "Levenberg-Marquardt steps per refinement")
           .Field("huber_sigma", &O::huber_sigma, Positive(), "Huber threshold of the segment residual (sigmas)")
@@ -63,7 +67,7 @@ ReferenceRefiner::ReferenceRefiner(const ReferenceRefinementOptions& options, do
   solver_options_.num_threads = 1;
   solver_options_.logging_type = ceres::SILENT;
   solver_options_.minimizer_progress_to_stdout = false;
-  PoseToParameters(Rigid3d(), reference_pose_);
+  ShowOnlyCeresErrors();
 }
 
 void ReferenceRefiner::Reset(const StereoRig& rig) {
@@ -107,8 +111,12 @@ void ReferenceRefiner::SetCarriedLine(int index, const PlueckerLine& line, const
   s.covariance = covariance;
 }
 
-bool ReferenceRefiner::CountFrame() {
+bool ReferenceRefiner::CountFrame(const Rigid3d& cam_from_ref) {
   if (++frames_since_keyframe_ < options_.keyframe_interval) return false;
+  if (options_.keyframe_min_distance_m > 0.0) {
+    const Eigen::Vector3d last = keyframes_.empty() ? Eigen::Vector3d::Zero() : PoseFromParameters(keyframes_.back().pose).Center();
+    if ((cam_from_ref.Center() - last).norm() < options_.keyframe_min_distance_m) return false;
+  }
   frames_since_keyframe_ = 0;
   return true;
 }
@@ -157,11 +165,23 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   for (const Keyframe& k : keyframes_) {
     for (const Observation& o : k.observations) lines_[o.line].observations += lines_[o.line].usable ? 1 : 0;
   }
+  // The solve's pose blocks, in one buffer: the reference pair's pose, then the keyframes' in
+  // window order. Ceres orders the blocks of each elimination group by address (a std::set of
+  // pointers), and that order decides the order of its floating-point sums: blocks wherever the
+  // heap put them (the deque's chunks) made runs of the same sequence differ. The lines are
+  // elements of one vector, in index order, for the same reason.
+  pose_parameters_.assign(kPoseAmbientSize * (keyframes_.size() + 1), 0.0);
+  PoseToParameters(Rigid3d(), pose_parameters_.data());
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    std::copy_n(keyframes_[k].pose, kPoseAmbientSize, pose_parameters_.data() + kPoseAmbientSize * (k + 1));
+  }
+  auto pose_of = [&](size_t k) { return pose_parameters_.data() + kPoseAmbientSize * (k + 1); };
+  double* const reference_pose = pose_parameters_.data();
   ceres::Problem problem(BorrowingProblemOptions());
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
-  problem.AddParameterBlock(reference_pose_, kPoseAmbientSize);
-  problem.SetParameterBlockConstant(reference_pose_);
-  ordering->AddElementToGroup(reference_pose_, 1);
+  problem.AddParameterBlock(reference_pose, kPoseAmbientSize);
+  problem.SetParameterBlockConstant(reference_pose);
+  ordering->AddElementToGroup(reference_pose, 1);
   size_t used = 0;
   residuals_.clear();
   auto add = [&](double* pose, int line, const Segment2d& left, const Segment2d& right) {
@@ -179,49 +199,47 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
   };
   bool newest_in = false;
-  for (Keyframe& k : keyframes_) {
-    const int seen = static_cast<int>(std::count_if(k.observations.begin(), k.observations.end(),
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    const std::vector<Observation>& seen_lines = keyframes_[k].observations;
+    const int seen = static_cast<int>(std::count_if(seen_lines.begin(), seen_lines.end(),
                                                     [&](const Observation& o) { return lines_[o.line].observations > 0; }));
     if (seen < 2) continue;
-    problem.AddParameterBlock(k.pose, kPoseAmbientSize, &pose_manifold_);
-    ordering->AddElementToGroup(k.pose, 1);
-    for (const Observation& o : k.observations) {
-      if (lines_[o.line].usable) add(k.pose, o.line, o.left, o.right);
+    problem.AddParameterBlock(pose_of(k), kPoseAmbientSize, &pose_manifold_);
+    ordering->AddElementToGroup(pose_of(k), 1);
+    for (const Observation& o : seen_lines) {
+      if (lines_[o.line].usable) add(pose_of(k), o.line, o.left, o.right);
     }
-    newest_in = &k == &keyframes_.back();
+    newest_in = k + 1 == keyframes_.size();
   }
   if (!newest_in) return false;
   for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
     LineState& l = lines_[i];
     if (!problem.HasParameterBlock(l.parameters)) continue;
-    add(reference_pose_, i, l.left, l.right);
+    add(reference_pose, i, l.left, l.right);
     if (l.prior_cost) problem.AddResidualBlock(l.prior_cost.get(), nullptr, l.parameters);
   }
 
-  // Keep the start: a failed solve leaves everything as it was.
+  // Keep the start: a failed solve leaves everything as it was (the keyframes' poses are
+  // copied back only after a usable solve).
   std::vector<double> saved;
-  for (const Keyframe& k : keyframes_) saved.insert(saved.end(), k.pose, k.pose + kPoseAmbientSize);
   for (const LineState& l : lines_) saved.insert(saved.end(), l.parameters, l.parameters + kLineAmbientSize);
   solver_options_.linear_solver_ordering = ordering;
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options_, &problem, &summary);
   solver_options_.linear_solver_ordering.reset();
   ++solves_;
-  bool finite = summary.IsSolutionUsable();
-  for (const Keyframe& k : keyframes_) finite = finite && Eigen::Map<const Eigen::Matrix<double, 12, 1>>(k.pose).allFinite();
+  bool finite = summary.IsSolutionUsable() &&
+                Eigen::Map<const Eigen::VectorXd>(pose_parameters_.data(), static_cast<Eigen::Index>(pose_parameters_.size())).allFinite();
   for (const LineState& l : lines_) finite = finite && Eigen::Map<const Eigen::Matrix<double, 6, 1>>(l.parameters).allFinite();
   if (!finite) {
     const double* s = saved.data();
-    for (Keyframe& k : keyframes_) {
-      std::copy_n(s, kPoseAmbientSize, k.pose);
-      s += kPoseAmbientSize;
-    }
     for (LineState& l : lines_) {
       std::copy_n(s, kLineAmbientSize, l.parameters);
       s += kLineAmbientSize;
     }
     return false;
   }
+  for (size_t k = 0; k < keyframes_.size(); ++k) std::copy_n(pose_of(k), kPoseAmbientSize, keyframes_[k].pose);
 
   // Each line's covariance: its block of the inverse of the problem's Gauss-Newton information
   // J^T J (whitened residuals, tangent coordinates; the Huber weights left out), i.e. the
@@ -240,9 +258,9 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   }
   std::vector<std::pair<const double*, int>> pose_offset;
   int pose_rows = 0;
-  for (const Keyframe& k : keyframes_) {
-    if (problem.HasParameterBlock(k.pose)) {
-      pose_offset.emplace_back(k.pose, pose_rows);
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    if (problem.HasParameterBlock(pose_of(k))) {
+      pose_offset.emplace_back(pose_of(k), pose_rows);
       pose_rows += 6;
     }
   }

@@ -7,7 +7,7 @@
 // kept -- hundreds of frames in a room --, so it biases every pose measured against it; a
 // white-noise filter can neither average it out nor describe it (docs/long_sequences.md).
 // While a reference pair is kept, this class stores keyframes K_k (every keyframe_interval
-// measured frames; beyond max_keyframes the one nearest its successor is dropped, which keeps the
+// measured frames, once the camera is keyframe_min_distance_m from the last one; beyond max_keyframes the one nearest its successor is dropped, which keeps the
 // widest parallax) with the filter's pose M_k = cam_from_ref and
 // the segments of the reference lines they observe, and after each new keyframe solves the
 // small bundle adjustment
@@ -25,8 +25,12 @@
 // The tracker then measures against the refined L_i, with the reference endpoints' noise
 // replaced by the lines' own covariance C_i (the line's block of the inverse of the problem's
 // Gauss-Newton information: marginalised over the keyframe poses, the correlations between
-// lines left out), and moves the current pose to the solved newest keyframe's pose (the
-// current frame is that keyframe). Measured effect: docs/long_sequences.md.
+// lines left out), and with move_pose moves the current pose to the solved newest keyframe's
+// pose (the current frame is that keyframe). Measured effect: docs/long_sequences.md.
+//
+// Repeatable to the bit: Ceres orders the blocks of each elimination group by address, so the
+// blocks of a solve live in buffers whose address order is their index order (the lines in
+// lines_, the poses in pose_parameters_), never in separately allocated nodes.
 #pragma once
 
 #include <ceres/cost_function.h>
@@ -50,11 +54,17 @@ namespace slt {
 // Every field's key, range and doc are declared once, in ReferenceRefinementOptionsSchema().
 struct ReferenceRefinementOptions {
   bool enabled = false;
-  int keyframe_interval = 10;  // measured frames between keyframes
-  int max_keyframes = 8;       // keyframes kept (beyond: the one nearest its successor is dropped)
+  int keyframe_interval = 10;  // measured frames between keyframes (at least)
+  // A keyframe also needs its camera centre this far from the previous keyframe's (the
+  // reference pair's for the first): on a slow camera, keyframes by count alone are too close to
+  // add parallax. 0 = by count only.
+  double keyframe_min_distance_m = 0.0;
+  int max_keyframes = 32;      // keyframes kept (beyond: the one nearest its successor is dropped)
   int max_iterations = 10;     // Levenberg-Marquardt steps per solve
   double huber_sigma = 2.0;    // Huber threshold on the whitened segment residual
-  bool move_pose = true;       // the current pose follows the refined newest keyframe
+  // The current pose follows the refined newest keyframe. Off: with 32 keyframes the room
+  // loop's maximum error is lower without it (docs/long_sequences.md).
+  bool move_pose = false;
   // Lines the reference pair does not define (near an epipolar plane: horizontal lines of a
   // horizontal rig) are triangulated from the reference's left image and a keyframe's once
   // their back-projected planes meet at this angle, then refined like the others. 0 = never
@@ -98,8 +108,8 @@ class ReferenceRefiner {
     Segment2d left, right;
     Eigen::Vector3d left_line;
   };
-  // Counts one measured frame; true when it is to be a keyframe.
-  bool CountFrame();
+  // Counts one measured frame, at `cam_from_ref`; true when it is to be a keyframe.
+  bool CountFrame(const Rigid3d& cam_from_ref);
   // Adds a keyframe at `cam_from_ref` and solves. True when the solve succeeded; then
   // *newest_cam_from_ref is the keyframe's refined pose and Line / Covariance / Refined give the
   // refined structure.
@@ -142,7 +152,9 @@ class ReferenceRefiner {
   LineManifold line_manifold_;
   std::unique_ptr<ceres::LossFunction> loss_;
   ceres::Solver::Options solver_options_;
-  double reference_pose_[kPoseAmbientSize];
+  // The pose blocks of the last solve: the reference pair's, then the keyframes' in window order
+  // (one buffer, so that Ceres's address order is this order).
+  std::vector<double> pose_parameters_;
 
   std::vector<LineState> lines_;
   std::deque<Keyframe> keyframes_;

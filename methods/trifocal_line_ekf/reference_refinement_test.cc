@@ -2,12 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <random>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "geometry/se3.h"
 #include "methods/trifocal_line_ekf/line_transfer_model.h"
+#include "methods/trifocal_line_ekf/trifocal_line_ekf.h"
+#include "simulator/simulator.h"
 
 namespace slt {
 namespace {
@@ -78,7 +85,7 @@ TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulates
   Rigid3d newest;
   bool solved = false;
   for (int k = 1; k <= 4; ++k) {
-    ASSERT_TRUE(refiner.CountFrame());
+    ASSERT_TRUE(refiner.CountFrame(KeyframePose(k)));
     std::vector<ReferenceRefiner::Observation> observations;
     for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
       const Seen s = Observe(rig, KeyframePose(k), i);
@@ -109,8 +116,29 @@ TEST(ReferenceRefinerTest, KeyframesEveryIntervalFrames) {
   refiner.Reset(StereoRig());
   refiner.StartReference(0);
   std::vector<bool> keyframes;
-  for (int f = 0; f < 7; ++f) keyframes.push_back(refiner.CountFrame());
+  for (int f = 0; f < 7; ++f) keyframes.push_back(refiner.CountFrame(Rigid3d()));
   EXPECT_EQ(keyframes, (std::vector<bool>{false, false, true, false, false, true, false}));
+}
+
+TEST(ReferenceRefinerTest, KeyframesWaitForTheMinimumDistanceFromTheLastOne) {
+  // 1 cm per frame along x, a keyframe at least every 2 frames and 2.5 cm from the last one
+  // (the reference pair at the origin for the first).
+  ReferenceRefinementOptions options;
+  options.keyframe_interval = 2;
+  options.keyframe_min_distance_m = 0.025;
+  ReferenceRefiner refiner(options, 1.0);
+  refiner.Reset(StereoRig());
+  refiner.StartReference(0);
+  std::vector<int> keyframes;
+  for (int f = 1; f <= 8; ++f) {
+    Rigid3d cam_from_ref;
+    cam_from_ref.translation = Eigen::Vector3d(-0.01 * f, 0.0, 0.0);
+    if (!refiner.CountFrame(cam_from_ref)) continue;
+    keyframes.push_back(f);
+    Rigid3d newest;
+    refiner.AddKeyframeAndSolve(cam_from_ref, {}, &newest);  // no lines: stored, not solved
+  }
+  EXPECT_EQ(keyframes, (std::vector<int>{3, 6}));
 }
 
 TEST(ReferenceRefinerTest, RefinementNeedsTheReferenceToCurrentDirectionAndPropagatedNoise) {
@@ -126,6 +154,63 @@ TEST(ReferenceRefinerTest, RefinementNeedsTheReferenceToCurrentDirectionAndPropa
   EXPECT_NO_THROW(options.Check());
   options.refinement.keyframe_interval = 0;
   EXPECT_THROW(options.Check(), std::exception);
+}
+
+// The tracker with the refinement over a sequence: every pose and covariance, in order.
+std::vector<TrackerOutput> TrackWithRefinement(const StereoSequence& sequence) {
+  // 8 keyframes: over 250 frames the window is full and drops keyframes.
+  const nlohmann::json options = {{"measurement", {{"refinement", {{"enabled", true}, {"max_keyframes", 8}}}}}};
+  std::unique_ptr<PoseTracker> tracker = TrifocalLineEkfInfo().create(options, "test");
+  tracker->Reset(sequence.rig);
+  std::vector<TrackerOutput> outputs;
+  for (const StereoFrame& frame : sequence.frames) outputs.push_back(tracker->Track(frame));
+  return outputs;
+}
+
+bool BitwiseEqual(const TrackerOutput& a, const TrackerOutput& b) {
+  return std::memcmp(a.cam_from_world.rotation.data(), b.cam_from_world.rotation.data(), 9 * sizeof(double)) == 0 &&
+         std::memcmp(a.cam_from_world.translation.data(), b.cam_from_world.translation.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(a.covariance.data(), b.covariance.data(), 36 * sizeof(double)) == 0 && a.status == b.status;
+}
+
+TEST(ReferenceRefinerTest, RoomLoopIsBitwiseRepeatableWhateverTheHeapAndThread) {
+  // The room loop of experiments/configs/long_room.json, shortened: 25 keyframes, so the window
+  // (8 keyframes here) drops some. A second run on another thread (another malloc arena) with the
+  // heap first shuffled (blocks of every small size freed in a random order, so that new
+  // allocations land in a different address order) must give the same bits: nothing in the
+  // refinement may depend on addresses (Ceres orders each elimination group by pointer),
+  // uninitialised memory or threads.
+  const SimulatedSequence sim = Simulate(SimulationConfigFromJson(
+      {{"frames", 250},
+       {"seed", 3},
+       {"scene", {{"type", "room"}}},
+       {"motion", {{"type", "loop"}, {"loop", {{"radius_x_m", 0.2}, {"radius_z_m", 0.28}}}}},
+       {"observation", {{"clip_to_image", true}}},
+       {"noise", {{"endpoint_px", 1.0}}}},
+      "test"));
+  const std::vector<TrackerOutput> first = TrackWithRefinement(sim.sequence);
+
+  std::vector<TrackerOutput> second;
+  std::thread([&] {
+    std::mt19937 random(7);
+    std::vector<std::unique_ptr<char[]>> blocks, guards;
+    for (int i = 0; i < 4000; ++i) {
+      blocks.emplace_back(new char[16 + random() % 1024]);
+      guards.emplace_back(new char[24]);  // keeps freed neighbours from merging
+    }
+    std::shuffle(blocks.begin(), blocks.end(), random);
+    blocks.resize(blocks.size() / 2);
+    second = TrackWithRefinement(sim.sequence);
+  }).join();
+
+  ASSERT_EQ(first.size(), second.size());
+  int differing = 0, first_differing = -1;
+  for (size_t k = 0; k < first.size(); ++k) {
+    if (!BitwiseEqual(first[k], second[k])) {
+      if (differing++ == 0) first_differing = static_cast<int>(k);
+    }
+  }
+  EXPECT_EQ(differing, 0) << "first at frame " << first_differing;
 }
 
 }  // namespace
