@@ -86,6 +86,18 @@ struct OptionDoc {
 // The listing as aligned text, one option per line.
 std::string FormatOptionDocs(const std::vector<OptionDoc>& docs);
 
+// For "used twice" checks: the first index whose key(item) equals an earlier item's;
+// items.size() when every key differs.
+template <typename T, typename Key>
+size_t FirstRepeat(const std::vector<T>& items, const Key& key) {
+  for (size_t i = 0; i < items.size(); ++i) {
+    for (size_t k = 0; k < i; ++k) {
+      if (key(items[k]) == key(items[i])) return i;
+    }
+  }
+  return items.size();
+}
+
 template <typename E>
 using EnumNames = std::vector<std::pair<E, const char*>>;
 

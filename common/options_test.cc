@@ -117,6 +117,13 @@ TEST(OptionSchema, ArraysOfObjectsAndObjectsKeptAsGiven) {
   EXPECT_EQ(docs[0].key, "items[].rate");
 }
 
+TEST(FirstRepeat, IndexOfTheFirstKeySeenBefore) {
+  const std::vector<std::pair<int, std::string>> items = {{1, "a"}, {2, "b"}, {3, "a"}, {4, "b"}};
+  EXPECT_EQ(FirstRepeat(items, [](const auto& item) { return item.second; }), 2u);
+  EXPECT_EQ(FirstRepeat(items, [](const auto& item) { return item.first; }), items.size());
+  EXPECT_EQ(FirstRepeat(std::vector<int>{}, [](int v) { return v; }), 0u);
+}
+
 TEST(NumberRange, ReasonsAndAllowedValues) {
   EXPECT_EQ(Positive().Reason(), "must be > 0");
   EXPECT_EQ(AtLeast(4.6).Finite().Reason(), "must be a finite number >= 4.6");

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
+#include <vector>
+
+#include "common/table.h"
 
 namespace slt {
 namespace {
@@ -21,24 +25,22 @@ std::string Shortfall(size_t associated, size_t total, const char* what, double 
          Format(" (%.1f %%)", 100.0 * fraction);
 }
 
-constexpr size_t kNameWidth = 22;
-
-std::string Row(const std::string& name, const ErrorStatistics& s) {
-  std::string row = name;
-  row.resize(kNameWidth, ' ');
-  for (double v : {s.rmse, s.mean, s.median, s.std, s.min, s.max}) row += Format(" %10.6f", v);
-  return row + "\n";
-}
-
-std::string Header() {
-  std::string row = "metric";
-  row.resize(kNameWidth, ' ');
+// One row per metric: its name, then evo's statistics with six decimals.
+std::string StatisticsTable(const TrajectoryErrors& errors) {
+  Table table;
+  table.columns.emplace_back("metric", Table::Align::kLeft, "", 22);
   for (const char* column : {"rmse", "mean", "median", "std", "min", "max"}) {
-    char buffer[16];
-    std::snprintf(buffer, sizeof(buffer), " %10s", column);
-    row += buffer;
+    table.columns.emplace_back(column, Table::Align::kRight, "", 10);
   }
-  return row + "\n";
+  for (const auto& [name, s] : {std::pair<const char*, const ErrorStatistics&>{"ATE translation (m)", errors.ate_trans_m},
+                                {"ATE rotation (deg)", errors.ate_rot_deg},
+                                {"RPE translation (m)", errors.rpe_trans_m},
+                                {"RPE rotation (deg)", errors.rpe_rot_deg}}) {
+    std::vector<std::string> cells = {name};
+    for (double v : {s.rmse, s.mean, s.median, s.std, s.min, s.max}) cells.push_back(Format("%.6f", v));
+    table.AddRow(std::move(cells));
+  }
+  return table.Text();
 }
 
 }  // namespace
@@ -63,11 +65,7 @@ std::string ErrorTable(const TrajectoryErrors& errors) {
                       std::to_string(errors.est_poses) + " estimate and " + std::to_string(errors.associated_poses) +
                       " of " + std::to_string(errors.gt_poses) + " ground-truth poses (max time difference " +
                       Format("%g s", errors.options.max_time_diff_s) + "); alignment " + alignment + "\n";
-  table += Header();
-  table += Row("ATE translation (m)", errors.ate_trans_m);
-  table += Row("ATE rotation (deg)", errors.ate_rot_deg);
-  table += Row("RPE translation (m)", errors.rpe_trans_m);
-  table += Row("RPE rotation (deg)", errors.rpe_rot_deg);
+  table += StatisticsTable(errors);
   const int delta = errors.options.rpe_delta_frames;
   table += "RPE: " + std::to_string(errors.rpe_trans_m.count) + " pairs (i, i + " + std::to_string(delta) + "), " +
            (errors.options.rpe_all_pairs ? "every i" : "i = 0, " + std::to_string(delta) + ", " +

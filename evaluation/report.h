@@ -18,8 +18,9 @@ constexpr double kMinAssociatedFraction = 0.95;
 // estimate poses (16.7 %) are associated with a ground-truth pose within 0.01 s".
 std::string AssociationWarning(const TrajectoryErrors& errors, double min_fraction = kMinAssociatedFraction);
 
-// The table, one line per metric (ATE and RPE, translation in m and rotation in deg; six
-// decimals), preceded by a line on the association and the alignment and followed by the
+// The table (common/table.h, as text), one line per metric (ATE and RPE, translation in m and
+// rotation in deg; six decimals, a column widened for a number of more than 10 characters),
+// preceded by a line on the association and the alignment and followed by the
 // final-frame error:
 //
 //   associated 100 of 100 estimate and 100 of 100 ground-truth poses (max time difference 0.01 s); alignment none

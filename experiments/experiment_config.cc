@@ -93,11 +93,12 @@ const OptionSchema<SweepAxis>& AxisSchema() {
                 if (!values->is_array() || values->empty()) r.Fail("values", "expected a non-empty array");
                 for (size_t i = 0; i < values->size(); ++i) {
                   if (!IsScalar((*values)[i])) r.Fail(IndexedKey("values", i), "expected a number, string or boolean");
-                  for (size_t k = 0; k < i; ++k) {
-                    if ((*values)[k] == (*values)[i]) r.Fail(IndexedKey("values", i), "duplicate value " + (*values)[i].dump());
-                  }
                 }
                 a->values = values->get<std::vector<nlohmann::json>>();
+                const size_t repeat = FirstRepeat(a->values, [](const nlohmann::json& v) { return v; });
+                if (repeat < a->values.size()) {
+                  r.Fail(IndexedKey("values", repeat), "duplicate value " + a->values[repeat].dump());
+                }
               },
               [](const A& a) { return nlohmann::json(a.values); }, "array of numbers, strings or booleans",
               "the values, in the order of the tables and plots")
@@ -263,12 +264,9 @@ const OptionSchema<ExperimentConfig>& ExperimentSchema() {
                                                                                               : "";
                  })
           .Check("methods", [](const C& c) {
-            for (size_t i = 0; i < c.methods.size(); ++i) {
-              for (size_t k = 0; k < i; ++k) {
-                if (c.methods[k].label == c.methods[i].label) {
-                  return "two methods have the id '" + c.methods[i].label + "' (give the second a distinct \"label\")";
-                }
-              }
+            const size_t repeat = FirstRepeat(c.methods, [](const MethodSpec& m) { return m.label; });
+            if (repeat < c.methods.size()) {
+              return "two methods have the id '" + c.methods[repeat].label + "' (give the second a distinct \"label\")";
             }
             return c.methods.empty() ? std::string("no method to run") : std::string();
           });
@@ -332,12 +330,9 @@ SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& w
 // The checks of a run on recorded sequences; their labels become the one sweep axis "dataset".
 void UseDatasetsAsSweep(JsonReader& reader, ExperimentConfig* c) {
   if (c->datasets.empty()) reader.Fail("datasets", "expected a non-empty array of {\"path\", ...}");
-  for (size_t i = 0; i < c->datasets.size(); ++i) {
-    for (size_t k = 0; k < i; ++k) {
-      if (c->datasets[k].label == c->datasets[i].label) {
-        ThrowOptionError(reader.where(), IndexedKey("datasets", i), "label", "'" + c->datasets[i].label + "' used twice");
-      }
-    }
+  const size_t repeat = FirstRepeat(c->datasets, [](const DatasetSpec& d) { return d.label; });
+  if (repeat < c->datasets.size()) {
+    ThrowOptionError(reader.where(), IndexedKey("datasets", repeat), "label", "'" + c->datasets[repeat].label + "' used twice");
   }
   if (reader.Has("simulation")) reader.Fail("simulation", "not with \"datasets\" (a run is on recorded or on simulated data)");
   if (c->trials != 1) reader.Fail("trials", "must be 1 with \"datasets\" (a recorded sequence has no random draws)");
@@ -378,10 +373,9 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
   for (size_t i = 0; i < c.plots.size(); ++i) {
     CheckPlot(c, c.plots[i], where, IndexedKey("plots", i));
     if (c.plots[i].title.empty()) c.plots[i].title = c.title;
-    for (size_t k = 0; k < i; ++k) {
-      if (c.plots[k].file == c.plots[i].file) ThrowOptionError(where, IndexedKey("plots", i), "file", "used twice");
-    }
   }
+  const size_t repeat = FirstRepeat(c.plots, [](const PlotSpec& p) { return p.file; });
+  if (repeat < c.plots.size()) ThrowOptionError(where, IndexedKey("plots", repeat), "file", "used twice");
   for (size_t i = 0; i < c.expect_better.size(); ++i) CheckOrdering(c, c.expect_better[i], where, IndexedKey("expect_better", i));
 
   if (!c.datasets.empty()) {

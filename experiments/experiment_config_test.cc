@@ -74,6 +74,10 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(ErrorOf({{"methods", {{{"label", "x"}}}}}).find("key 'methods[0].name'"), std::string::npos);
   EXPECT_NE(ErrorOf({{"methods", {"trifocal_line_ekf", "trifocal_line_ekf"}}}).find("key 'methods': two methods have the id"),
             std::string::npos);
+  EXPECT_EQ(ErrorOf({{"sweep", {{{"parameter", "noise.endpoint_px"}, {"values", {1, 2, 1}}}}}}),
+            "cfg.json: key 'sweep[0].values[2]': duplicate value 1");
+  EXPECT_EQ(ErrorOf({{"plots", {{{"kind", "methods"}, {"file", "a.png"}}, {{"kind", "methods"}, {"file", "a.png"}}}}}),
+            "cfg.json: key 'plots[1].file': used twice");
   EXPECT_NE(ErrorOf({{"metrics_frame", 100}}).find("cfg.json: key 'metrics_frame': frame 100 does not exist"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"metrics_frame", -2}}).find("key 'metrics_frame'"), std::string::npos);

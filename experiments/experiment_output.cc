@@ -9,6 +9,7 @@
 
 #include "common/json_reader.h"
 #include "common/csv.h"
+#include "common/table.h"
 #include "experiments/experiment_runner.h"
 
 namespace slt {
@@ -32,7 +33,7 @@ std::string MetricTitle(int metric) { return kMetrics[metric].title; }
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
 
-// The columns that name a row: method id, point index, the point's sweep values.
+// The cells that name a row of a CSV file: method id, point index, the point's sweep values.
 std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::vector<SweepPoint>& points, size_t method,
                                    size_t point) {
   std::vector<std::string> row = {config.methods.at(method).Id(), std::to_string(point)};
@@ -40,12 +41,13 @@ std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::ve
   return row;
 }
 
-// Their header, then `columns`.
-std::vector<std::string> Header(const ExperimentConfig& config, std::initializer_list<const char*> columns) {
-  std::vector<std::string> header = {"method", "point"};
-  for (const std::string& c : SweepColumns(config)) header.push_back(c);
-  header.insert(header.end(), columns.begin(), columns.end());
-  return header;
+// A CSV file's table: the columns of RowPrefix, then `columns`.
+Table CsvFileTable(const ExperimentConfig& config, const std::vector<std::string>& columns) {
+  Table table;
+  for (const char* c : {"method", "point"}) table.columns.emplace_back(c);
+  for (const std::string& c : SweepColumns(config)) table.columns.emplace_back(c);
+  for (const std::string& c : columns) table.columns.emplace_back(c);
+  return table;
 }
 
 // Method index from its id; throws naming the file and line.
@@ -112,21 +114,32 @@ std::string MetricsFrameText(const ExperimentConfig& config) {
                                   : "frame " + std::to_string(config.metrics_frame);
 }
 
-// The cells of a summary table row: method, sweep values, trials, then mean, median and 95 %
-// interval per table metric; text cells escaped by `escape` (Markdown or LaTeX).
-std::string TableRow(const ExperimentConfig& config, const std::vector<SweepPoint>& points, const SummaryRow& r,
-                     std::string (*escape)(const std::string&), const std::string& separator) {
-  std::string row = escape(config.methods.at(r.method).Id());
-  for (const nlohmann::json& v : points[r.point].values) row += separator + escape(FormatValue(v));
-  row += separator + (r.finite_trials == r.trials ? std::to_string(r.trials)
-                                                  : std::to_string(r.finite_trials) + "/" + std::to_string(r.trials));
+// The table of summary.md and summary.tex: method, sweep values, trials (f/n when only f were
+// finite), then mean, median and 95 % interval under each table metric; a rule between methods.
+Table SummaryTable(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  Table table;
+  table.columns.emplace_back("Method", Table::Align::kLeft);
+  for (const SweepAxis& a : config.sweep) table.columns.emplace_back(a.label);
+  table.columns.emplace_back("Trials");
   for (int m : TableMetrics(config)) {
-    const Summary& s = r.metrics[m];
-    for (const std::string& cell : {Sig(s.mean), Sig(s.median), "[" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "]"}) {
-      row += separator + cell;
-    }
+    table.groups.push_back({MetricTitle(m), table.columns.size(), 3});
+    table.columns.emplace_back("mean");
+    table.columns.emplace_back("median");
+    table.columns.emplace_back("95 % interval", Table::Align::kRight, "95\\,\\% interval");
   }
-  return row;
+  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
+  for (const SummaryRow& r : rows) {
+    std::vector<std::string> cells = {config.methods.at(r.method).Id()};
+    for (const nlohmann::json& v : points[r.point].values) cells.push_back(FormatValue(v));
+    cells.push_back(r.finite_trials == r.trials ? std::to_string(r.trials)
+                                                : std::to_string(r.finite_trials) + "/" + std::to_string(r.trials));
+    for (int m : TableMetrics(config)) {
+      const Summary& s = r.metrics[m];
+      cells.insert(cells.end(), {Sig(s.mean), Sig(s.median), "[" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "]"});
+    }
+    table.AddRow(std::move(cells), /*rule_before=*/&r != &rows.front() && r.method != (&r - 1)->method);
+  }
+  return table;
 }
 
 }  // namespace
@@ -153,13 +166,12 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   CreateDirectories(JoinPath(dir, "raw"));
 
-  std::vector<std::string> header = Header(config, {"trial", "seed", "n_frames", "metrics_frame"});
-  for (int m = 0; m < kNumTrialMetrics; ++m) header.push_back(TrialMetricName(m));
-  header.push_back("finite");
-  std::string csv = CsvLine(header);
-  std::string curves = CsvLine(Header(config, {"trial", "frame", "time_s", "rot_err_deg", "trans_err_m"}));
-  std::string index = CsvLine(Header(config, {"trial", "estimate", "ground_truth"}));
-  bool any_curve = false, any_trajectory = false;
+  std::vector<std::string> columns = {"trial", "seed", "n_frames", "metrics_frame"};
+  for (int m = 0; m < kNumTrialMetrics; ++m) columns.push_back(TrialMetricName(m));
+  columns.push_back("finite");
+  Table csv = CsvFileTable(config, columns);
+  Table curves = CsvFileTable(config, {"trial", "frame", "time_s", "rot_err_deg", "trans_err_m"});
+  Table index = CsvFileTable(config, {"trial", "estimate", "ground_truth"});
   const std::string tdir = JoinPath(dir, "raw/trajectories");
   fs::remove_all(tdir);  // this program's own folder: no stale files from an earlier run
   for (const TrialResult& t : trials) {
@@ -169,28 +181,26 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
     row.insert(row.end(), {std::to_string(t.seed), std::to_string(t.frames), std::to_string(t.metrics_frame)});
     for (double v : t.metrics) row.push_back(FormatDouble(v));
     row.push_back(t.finite ? "true" : "false");
-    csv += CsvLine(row);
+    csv.AddRow(std::move(row));
     for (const FrameError& e : t.curve) {
       std::vector<std::string> r = prefix;
       r.insert(r.end(), {std::to_string(e.frame), FormatDouble(e.time_s), FormatDouble(e.rot_err_deg),
                          FormatDouble(e.trans_err_m)});
-      curves += CsvLine(r);
-      any_curve = true;
+      curves.AddRow(std::move(r));
     }
     if (t.estimate.empty()) continue;
-    if (!any_trajectory) CreateDirectories(tdir);
-    any_trajectory = true;
+    if (index.rows.empty()) CreateDirectories(tdir);
     const std::string tag = "p" + std::to_string(t.point_index) + "_t" + std::to_string(t.trial);
     const std::string est_file = "m" + std::to_string(t.method_index) + "_" + tag + ".tum";
     const std::string gt_file = "gt_" + tag + ".tum";
     WriteTumTrajectory(JoinPath(tdir, est_file), t.estimate);
     WriteTumTrajectory(JoinPath(tdir, gt_file), t.ground_truth);
     prefix.insert(prefix.end(), {est_file, gt_file});
-    index += CsvLine(prefix);
+    index.AddRow(std::move(prefix));
   }
-  WriteTextFileAtomically(JoinPath(dir, "raw/trials.csv"), csv);
-  if (any_curve) WriteTextFileAtomically(JoinPath(dir, "raw/curves.csv"), curves);
-  if (any_trajectory) WriteTextFileAtomically(JoinPath(tdir, "index.csv"), index);
+  WriteTextFileAtomically(JoinPath(dir, "raw/trials.csv"), csv.Csv());
+  if (!curves.rows.empty()) WriteTextFileAtomically(JoinPath(dir, "raw/curves.csv"), curves.Csv());
+  if (!index.rows.empty()) WriteTextFileAtomically(JoinPath(tdir, "index.csv"), index.Csv());
 }
 
 std::vector<TrialResult> ReadRawResults(const std::string& dir, const ExperimentConfig& config) {
@@ -275,25 +285,23 @@ std::vector<SummaryRow> SummarizeTrials(const ExperimentConfig& /*config*/, cons
 
 std::string SummaryCsv(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  std::vector<std::string> header = Header(config, {"trials", "finite_trials"});
+  std::vector<std::string> columns = {"trials", "finite_trials"};
   for (int m = 0; m < kNumTrialMetrics; ++m) {
-    for (const char* suffix : kStatSuffixes) header.push_back(std::string(TrialMetricName(m)) + suffix);
+    for (const char* suffix : kStatSuffixes) columns.push_back(std::string(TrialMetricName(m)) + suffix);
   }
-  std::string csv = CsvLine(header);
+  Table csv = CsvFileTable(config, columns);
   for (const SummaryRow& r : rows) {
     std::vector<std::string> row = RowPrefix(config, points, r.method, r.point);
     row.insert(row.end(), {std::to_string(r.trials), std::to_string(r.finite_trials)});
     for (const Summary& s : r.metrics) {
       for (double v : {s.mean, s.median, s.p2_5, s.p97_5}) row.push_back(FormatDouble(v));
     }
-    csv += CsvLine(row);
+    csv.AddRow(std::move(row));
   }
-  return csv;
+  return csv.Csv();
 }
 
 std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
-  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  const std::vector<int> metrics = TableMetrics(config);
   std::string md = "# " + config.title + "\n\n";
   if (config.datasets.empty()) {
     md += std::to_string(config.trials) + " trials per method and sweep point (trial k simulates with seed TrialSeed(" +
@@ -308,20 +316,7 @@ std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<Su
           "none). Times: wall time of one Track() call (the front end's per-stage times are in track_images' "
           "summary).\n\n";
   }
-  md += "| Method |";
-  std::string rule = "|---|";
-  for (const SweepAxis& a : config.sweep) {
-    md += " " + MarkdownEscape(a.label) + " |";
-    rule += "---:|";
-  }
-  md += " Trials |";
-  rule += "---:|";
-  for (int m : metrics) {
-    md += " " + MarkdownEscape(MetricTitle(m)) + " mean | median | 95 % interval |";
-    rule += "---:|---:|---:|";
-  }
-  md += "\n" + rule + "\n";
-  for (const SummaryRow& r : rows) md += "| " + TableRow(config, points, r, MarkdownEscape, " | ") + " |\n";
+  md += SummaryTable(config, rows).Markdown();
   bool any_nonfinite = false;
   for (const SummaryRow& r : rows) any_nonfinite = any_nonfinite || r.finite_trials != r.trials;
   if (any_nonfinite) md += "\nTrials shown as f/n: only the f trials with finite poses enter the statistics.\n";
@@ -333,41 +328,17 @@ std::string SummaryMarkdown(const ExperimentConfig& config, const std::vector<Su
 }
 
 std::string SummaryLatex(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
-  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  const std::vector<int> metrics = TableMetrics(config);
-  const size_t lead = 2 + config.sweep.size();
   std::string tex = "% " + config.title + ": generated by run_experiment; needs \\usepackage{booktabs}\n";
   tex += "% mean, median and 95 % interval [2.5th, 97.5th percentile] over " + std::to_string(config.trials) +
          " trials; errors at " + MetricsFrameText(config) + "\n";
-  tex += "\\begin{tabular}{l" + std::string(lead - 1, 'r') + std::string(3 * metrics.size(), 'r') + "}\n\\toprule\n";
-  tex += std::string(lead - 1, '&');
-  for (int m : metrics) tex += " & \\multicolumn{3}{c}{" + TexEscape(MetricTitle(m)) + "}";
-  tex += " \\\\\n";
-  for (size_t i = 0; i < metrics.size(); ++i) {
-    const size_t first = lead + 1 + 3 * i;
-    tex += "\\cmidrule(lr){" + std::to_string(first) + "-" + std::to_string(first + 2) + "}";
-  }
-  tex += "\nMethod";
-  for (const SweepAxis& a : config.sweep) tex += " & " + TexEscape(a.label);
-  tex += " & Trials";
-  for (size_t i = 0; i < metrics.size(); ++i) tex += " & mean & median & 95\\,\\% interval";
-  tex += " \\\\\n\\midrule\n";
-  size_t previous_method = rows.empty() ? 0 : rows.front().method;
-  for (const SummaryRow& r : rows) {
-    if (r.method != previous_method) tex += "\\midrule\n";
-    previous_method = r.method;
-    tex += TableRow(config, points, r, TexEscape, " & ") + " \\\\\n";
-  }
-  tex += "\\bottomrule\n\\end{tabular}\n";
-  return tex;
+  return tex + SummaryTable(config, rows).Latex();
 }
 
 std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   const auto groups = GroupTrials(trials, [](const TrialResult& t) { return t.finite && !t.curve.empty(); });
-  const std::vector<std::string> header = Header(
+  Table csv = CsvFileTable(
       config, {"frame", "trials", "rot_err_deg_mean", "trans_err_m_mean", "rot_err_deg_median", "trans_err_m_median"});
-  std::string csv = CsvLine(header);
   for (const auto& [key, group] : groups) {
     std::vector<ErrorCurve> curves;
     for (const TrialResult* t : group) curves.push_back(t->curve);
@@ -382,10 +353,10 @@ std::string CurvesCsv(const ExperimentConfig& config, const std::vector<TrialRes
       row.insert(row.end(), {std::to_string(mean[k].frame), std::to_string(curves.size()),
                              FormatDouble(mean[k].rot_err_deg), FormatDouble(mean[k].trans_err_m),
                              FormatDouble(Quantile(rot, 0.5)), FormatDouble(Quantile(trans, 0.5))});
-      csv += CsvLine(row);
+      csv.AddRow(std::move(row));
     }
   }
-  return csv;
+  return csv.Csv();
 }
 
 std::string OrderingText(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
     std::ostringstream log;
     log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms\n";
     const bool show_progress = progress_forced || ::isatty(STDERR_FILENO);
-    int counts[kNumTrackingStatuses] = {};
+    RunCounts counts;
     ProgressBar progress;
     int detection_frames = 0;
     FrontEndStageTimes steady, detecting;
@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
         ++steady_frames;
         steady += stats.times;
       }
-      ++counts[static_cast<int>(step.output.status)];
+      counts.Add(step.output);
       trajectory.push_back({images.time, step.output.cam_from_world.Inverse()});
       if (writer) writer->Append(*step.frame);
       if (pictures) pictures->AddFrame(k - first, images.left, images.right, front_end, *step.frame, step.output);
@@ -145,15 +145,14 @@ int main(int argc, char** argv) {
     const int frames = end - first;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto ms = [](double seconds, int n) { return n > 0 ? 1e3 * seconds / n : 0.0; };
-    const auto count = [&counts](TrackingStatus status) { return counts[static_cast<int>(status)]; };
     std::fprintf(stderr,
                  "track_images: %s: %d frames: %d tracking, %d degraded, %d new reference, %d lost; detection on %d frames\n"
                  "  per steady frame:    track %.2f ms, filter %.2f ms (front end %.2f ms)\n"
                  "  per detection frame: detect %.2f ms, describe %.2f ms, match %.2f ms, track %.2f ms, filter %.2f ms "
                  "(front end %.2f ms)\n"
                  "  tracker %.2f ms per frame, image reading %.2f ms per frame; %.1f fps overall\n",
-                 method.c_str(), frames, count(TrackingStatus::kTracking), count(TrackingStatus::kDegraded),
-                 count(TrackingStatus::kNewReference), count(TrackingStatus::kLost), detection_frames,
+                 method.c_str(), frames, counts.Frames(TrackingStatus::kTracking), counts.Frames(TrackingStatus::kDegraded),
+                 counts.Frames(TrackingStatus::kNewReference), counts.Frames(TrackingStatus::kLost), detection_frames,
                  ms(steady.track, steady_frames), ms(steady.filter, steady_frames), ms(steady.Total(), steady_frames),
                  ms(detecting.detect, detection_frames), ms(detecting.describe, detection_frames),
                  ms(detecting.match, detection_frames), ms(detecting.track, detection_frames),

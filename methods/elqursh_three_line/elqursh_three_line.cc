@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/json_reader.h"
+#include "geometry/se3.h"
 #include "geometry/trifocal.h"
 #include "methods/elqursh_three_line/candidate_triplets.h"
 #include "methods/elqursh_three_line/three_line_solver.h"
@@ -159,6 +160,7 @@ class ElqurshThreeLineTracker final : public PoseTracker {
     model_.Reset(rig);
     ransac_.Reset(options_.seed);
     started_ = false;
+    velocity_.setZero();
   }
 
   TrackerOutput Track(const StereoFrame& frame) override;
@@ -184,6 +186,9 @@ class ElqurshThreeLineTracker final : public PoseTracker {
   Rigid3d ref_from_world_;
   Rigid3d cam_from_world_;
   int lost_frames_ = 0;  // lost frames measured against the current reference
+  // The last measured motion per frame, log(cam_t_from_cam_t-1) (geometry/se3.h): the
+  // constant-velocity prediction of a lost frame.
+  Vector6d velocity_ = Vector6d::Zero();
   int reference_features_ = 0;  // stereo lines of the reference pair
 
   // Per-frame workspace, kept to avoid allocation.
@@ -269,15 +274,21 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
   }
   out.features_outside_gate = available - out.features_used;
   if (accepted) {
-    lost_frames_ = 0;
+    // The motion since the reference, spread over the frames it spans (the lost ones between).
+    velocity_ = LogSE3(result_.model) / static_cast<double>(lost_frames_ + 1);
     cam_from_world_ = result_.model * ref_from_world_;
     out.status = TrackingStatus::kTracking;
     SetReference(frame, cam_from_world_);
   } else {
-    // Lost: the pose is held. The reference stays for a while (the next frame that finds a
-    // configuration measures the motion of the lost ones too), unless this frame offers more:
-    // enough lines of its own while too few of the reference's are still seen, or a reference
-    // that has failed for max_lost_frames frames (its configurations do not work).
+    // Lost: the pose is the constant-velocity prediction from the last measured motion, its
+    // velocity multiplied by lost_velocity_decay on every lost frame (0 = hold the pose). The
+    // reference stays for a while (the next frame that finds a configuration measures the
+    // motion of the lost ones too), unless this frame offers more: enough lines of its own
+    // while too few of the reference's are still seen, a reference whose matched lines hold no
+    // candidate configuration at all (the candidates come from the reference's 3-D directions,
+    // and a later frame sees at most the reference lines this one sees: it cannot do better),
+    // or a reference that has failed for max_lost_frames frames (its configurations do not
+    // work). The new reference takes the predicted pose.
     out.status = TrackingStatus::kLost;
     // Too few lines, no triplet that may be a primitive configuration (the rotation is not
     // measured), or a consensus too small.
@@ -285,8 +296,10 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
                  : candidates_.empty()              ? StatusReason::kUnconstrained
                                                     : StatusReason::kFewAgree;
     ++lost_frames_;
+    velocity_ *= options_.lost_velocity_decay;
+    cam_from_world_ = ExpSE3(velocity_) * cam_from_world_;
     const bool has_lines = model_.CurrentStereoFeatures() >= options_.min_inliers;
-    if (has_lines && (available < options_.min_inliers || lost_frames_ > options_.max_lost_frames)) {
+    if (has_lines && (out.reason != StatusReason::kFewAgree || lost_frames_ > options_.max_lost_frames)) {
       SetReference(frame, cam_from_world_);
     }
   }
@@ -331,6 +344,8 @@ const OptionSchema<ElqurshThreeLineOptions>& ElqurshThreeLineOptionsSchema() {
                  "smallest consensus accepted (fraction of the measurable lines)")
           .Field("max_lost_frames", &O::max_lost_frames, AtLeast(0).Note("0 = always the previous frame"),
                  "lost frames against one reference before the current frame replaces it")
+          .Field("lost_velocity_decay", &O::lost_velocity_decay, InRange(0.0, 1.0),
+                 "velocity factor of the constant-velocity prediction per lost frame (1 = coast, 0 = hold)")
           .Field("min_epipolar_angle_deg", &O::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines this close to the epipolar direction are not used");
   return schema;

@@ -20,12 +20,18 @@
 //      on the left, docs/conventions.md);
 //   4. the pose is accepted when at least max(min_inliers, min_inlier_fraction x the lines
 //      measurable) lines agree: cam_t_from_world = cam_t_from_ref * ref_from_world, and frame t
-//      becomes the reference. Otherwise the frame is `lost` and the pose is held (never a pose
-//      from too small a consensus). The reference stays, so that the next frame that finds a
-//      configuration measures the motion of the lost ones too, unless frame t has at least
-//      min_inliers lines of its own and either fewer than that of the reference's are still
-//      seen or the reference has failed max_lost_frames frames in a row (its configurations do
-//      not work); then frame t becomes the reference at the held pose.
+//      becomes the reference. Otherwise the frame is `lost` (never a pose from too small a
+//      consensus) and its pose is the constant-velocity prediction
+//        cam_t_from_world = exp(v) cam_t-1_from_world,  v <- lost_velocity_decay * v,
+//      v the last measured motion per frame (log of cam_from_ref over the frames it spans,
+//      geometry/se3.h), as the EKFs and taylor_line_sfm predict. The reference stays, so that
+//      the next frame that finds a configuration measures the motion of the lost ones too,
+//      unless frame t has at least min_inliers lines of its own and the reference cannot do
+//      better: fewer than min_inliers of its lines are still measurable, or none of their
+//      triplets is a candidate configuration (the candidates come from the reference's 3-D
+//      directions and a later frame matches at most the reference lines this one does), or it
+//      has failed max_lost_frames frames in a row (its configurations do not work); then frame t
+//      becomes the reference at the predicted pose.
 #pragma once
 
 #include <cstdint>
@@ -69,6 +75,11 @@ struct ElqurshThreeLineOptions {
   // Lost frames measured against one reference before the current frame replaces it (0 = the
   // paper's rule: always the previous frame).
   int max_lost_frames = 10;
+  // A lost frame's pose is the constant-velocity prediction from the last measured
+  // frame-to-frame motion, its velocity multiplied by this factor on every lost frame (the
+  // trackers' common policy, methods/stereo_ekf and taylor_line_sfm); 1 = coast at constant
+  // velocity, 0 = hold the last pose.
+  double lost_velocity_decay = 0.5;
   // Lines: stereo pairs within this angle of the epipolar direction do not define a 3-D line
   // and are not used (LineTransferOptions).
   double min_epipolar_angle_deg = 3.0;

@@ -1,9 +1,13 @@
 // Noise-free primitive configurations and stereo lines for the tests and the benchmark of the
-// three-line solvers (three_line_solver.h).
+// three-line solvers (three_line_solver.h), and the choice of scene lines without a
+// configuration for the tracker's tests.
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "geometry/plucker.h"
 #include "geometry/se3.h"
@@ -68,6 +72,23 @@ inline StereoLineConstraint Constraint(const Rigid3d& b_from_a, const Line3& lin
   c.left_normal = ImageLine(b_from_a, line);
   c.right_normal = ImageLine(kRightFromLeft * b_from_a, line);
   return c;
+}
+
+// The ids (indices) of the first lines of `scene` of which no two are within 20 deg of parallel:
+// no candidate configuration among them (the tolerances are 5 deg).
+template <typename Line>
+std::vector<std::int64_t> LinesWithoutAConfiguration(const std::vector<Line>& scene) {
+  std::vector<std::int64_t> ids;
+  std::vector<Eigen::Vector3d> directions;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const Eigen::Vector3d d = (scene[i].q - scene[i].p).normalized();
+    bool distinct = true;
+    for (const Eigen::Vector3d& other : directions) distinct = distinct && d.cross(other).norm() > std::sin(20.0 * M_PI / 180.0);
+    if (!distinct) continue;
+    ids.push_back(static_cast<std::int64_t>(i));
+    directions.push_back(d);
+  }
+  return ids;
 }
 
 }  // namespace three_line_test
