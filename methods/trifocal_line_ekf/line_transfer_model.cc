@@ -425,6 +425,7 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
   if (!refiner_->AddKeyframeAndSolve(cam_from_ref, keyframe_observations_, &refined)) return false;
   for (int index = 0; index < static_cast<int>(reference_lines_.size()); ++index) {
     if (refiner_->Refined(index)) TakeRefinedLine(index, refiner_->TangentBasis(index));
+    if (refiner_->HeldBack(index)) reference_lines_[index].refined = false;
   }
   *refined_cam_from_ref = refined;
   if (options_.refinement.move_pose) last_cam_from_ref_ = refined;

@@ -4,10 +4,12 @@
 #include <ceres/problem.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "common/chi_square.h"
 #include "optim/ceres_logging.h"
 
 namespace slt {
@@ -44,7 +46,11 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
           .Field("carry_over", &O::carry_over,
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
-                 "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)");
+                 "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)")
+          .Field("triangulated_max_sigma_m", &O::triangulated_max_sigma_m, AtLeast(0.0),
+                 "a triangulated line reaches the filter once its position's largest standard deviation is at most this (0 = no bound)")
+          .Field("triangulated_gate_probability", &O::triangulated_gate_probability, InRange(0.0, 1.0, "[)"),
+                 "a triangulated line reaches the filter once its residuals pass the chi-square test at this probability (0 = no test)");
   return schema;
 }
 
@@ -89,6 +95,8 @@ void ReferenceRefiner::SetLine(int index, const PlueckerLine& line, bool usable,
   s.left_line = left_line;
   s.usable = usable && LineToParameters(line, s.parameters);
   s.refined = false;
+  s.triangulated = false;
+  s.held_back = false;
   s.prior_cost.reset();
   s.left = left;
   s.right = right;
@@ -140,7 +148,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       if (l.usable) continue;
       double sine = 0.0;
       const PlueckerLine line = StereoPairLine(cam_from_ref, l.left_line, o.left_line, nullptr, nullptr, &sine);
-      if (sine >= min_triangulation_sine_) l.usable = LineToParameters(line, l.parameters);
+      if (sine >= min_triangulation_sine_) l.usable = l.triangulated = LineToParameters(line, l.parameters);
     }
   }
   // Over the window: drop the keyframe nearest its successor (camera centres; never the
@@ -163,7 +171,9 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   // (one line leaves a pose direction free).
   for (LineState& l : lines_) l.observations = 0;
   for (const Keyframe& k : keyframes_) {
-    for (const Observation& o : k.observations) lines_[o.line].observations += lines_[o.line].usable ? 1 : 0;
+    for (const Observation& o : k.observations) {
+      lines_[o.line].observations += lines_[o.line].usable && !lines_[o.line].triangulated ? 1 : 0;
+    }
   }
   // The solve's pose blocks, in one buffer: the reference pair's pose, then the keyframes' in
   // window order. Ceres orders the blocks of each elimination group by address (a std::set of
@@ -207,7 +217,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     problem.AddParameterBlock(pose_of(k), kPoseAmbientSize, &pose_manifold_);
     ordering->AddElementToGroup(pose_of(k), 1);
     for (const Observation& o : seen_lines) {
-      if (lines_[o.line].usable) add(pose_of(k), o.line, o.left, o.right);
+      if (lines_[o.line].usable && !lines_[o.line].triangulated) add(pose_of(k), o.line, o.left, o.right);
     }
     newest_in = k + 1 == keyframes_.size();
   }
@@ -274,6 +284,8 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(line_rows, pose_rows);
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(pose_rows, pose_rows);
   Eigen::Vector2d residual;
+  gate_sum_.assign(lines_.size(), 0.0);
+  gate_segments_.assign(lines_.size(), 0);
   Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
   Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
   Eigen::Matrix<double, kPoseAmbientSize, 6, Eigen::RowMajor> pose_plus;
@@ -282,6 +294,8 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     const double* parameters[2] = {residuals_[k].pose, lines_[line].parameters};
     double* jacobians[2] = {d_pose.data(), d_line.data()};
     if (!costs_[k].Evaluate(parameters, residual.data(), jacobians)) continue;
+    gate_sum_[line] += residual.squaredNorm();
+    ++gate_segments_[line];
     const Eigen::Matrix<double, 2, 4> j_line = d_line * TangentBasis(line);
     const int l = line_offset[line];
     a_blocks.block<4, 4>(l, 0).noalias() += j_line.transpose() * j_line;
@@ -314,8 +328,10 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     schur.noalias() -= b.middleRows<4>(l).transpose() * a_inverse_b.middleRows<4>(l);
   }
   const Eigen::LDLT<Eigen::MatrixXd> schur_ldlt(schur);
-  if (pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive()) {
-    const Eigen::MatrixXd schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
+  const bool poses_determined = pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive();
+  Eigen::MatrixXd schur_inverse;  // the keyframe poses' marginal covariance
+  if (poses_determined) {
+    schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
     for (size_t i = 0; i < lines_.size(); ++i) {
       const int l = line_offset[i];
       if (l < 0 || !ok[i]) continue;
@@ -324,8 +340,102 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
     }
   }
+  if (poses_determined) RefineTriangulatedLines(pose_of, offset_of_pose, schur_inverse, problem, &used);
   *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
   return true;
+}
+
+template <typename PoseOf, typename OffsetOfPose>
+void ReferenceRefiner::RefineTriangulatedLines(const PoseOf& pose_of, const OffsetOfPose& offset_of_pose,
+                                               const Eigen::MatrixXd& pose_covariance, const ceres::Problem& solved,
+                                               size_t* used) {
+  // The lines triangulated from temporal parallax stay out of the joint solve (in it, their
+  // small-parallax errors bent the keyframe poses and through them the stereo lines: room loop,
+  // docs/long_sequences.md). Each is refined alone against the solved poses, held fixed; its
+  // covariance adds the poses' uncertainty, A^-1 + A^-1 B P B^T A^-1 (A its information, B the
+  // line-pose block, P the poses' marginal covariance), and it reaches the filter only through
+  // the consistency gate (triangulated_max_sigma_m, triangulated_gate_probability).
+  ceres::Solver::Options options = solver_options_;
+  options.linear_solver_type = ceres::DENSE_QR;
+  const int pose_rows = static_cast<int>(pose_covariance.rows());
+  Eigen::Vector2d residual;
+  Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
+  Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
+  Eigen::Matrix<double, kPoseAmbientSize, 6, Eigen::RowMajor> pose_plus;
+  Eigen::MatrixXd b(4, pose_rows);
+  for (int i = 0; i < static_cast<int>(lines_.size()); ++i) {
+    LineState& l = lines_[i];
+    l.held_back = false;
+    if (!l.triangulated || l.prior_cost) continue;
+    ceres::Problem problem(BorrowingProblemOptions());
+    problem.AddParameterBlock(l.parameters, kLineAmbientSize, &line_manifold_);
+    const size_t first = *used;
+    auto add = [&](double* pose, const Segment2d& left, const Segment2d& right) {
+      if (!problem.HasParameterBlock(pose)) {
+        problem.AddParameterBlock(pose, kPoseAmbientSize, &pose_manifold_);
+        problem.SetParameterBlockConstant(pose);
+      }
+      for (int c = 0; c < 2; ++c) {
+        if (*used == costs_.size()) costs_.emplace_back();
+        costs_[*used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_);
+        problem.AddResidualBlock(&costs_[*used], loss_.get(), pose, l.parameters);
+        residuals_.push_back({pose, i});
+        ++*used;
+      }
+    };
+    for (size_t k = 0; k < keyframes_.size(); ++k) {
+      if (!solved.HasParameterBlock(pose_of(k))) continue;
+      for (const Observation& o : keyframes_[k].observations) {
+        if (o.line == i) add(pose_of(k), o.left, o.right);
+      }
+    }
+    if (*used == first) continue;  // not seen in the window
+    add(pose_parameters_.data(), l.left, l.right);
+    double saved[kLineAmbientSize];
+    std::copy_n(l.parameters, kLineAmbientSize, saved);
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    if (!summary.IsSolutionUsable() || !Eigen::Map<const Eigen::Matrix<double, 6, 1>>(l.parameters).allFinite()) {
+      std::copy_n(saved, kLineAmbientSize, l.parameters);
+      l.held_back = l.refined;
+      l.refined = false;
+      continue;
+    }
+    Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
+    b.setZero();
+    double sum = 0.0;
+    int segments = 0;
+    for (size_t r = first; r < *used; ++r) {
+      const double* parameters[2] = {residuals_[r].pose, l.parameters};
+      double* jacobians[2] = {d_pose.data(), d_line.data()};
+      if (!costs_[r].Evaluate(parameters, residual.data(), jacobians)) continue;
+      sum += residual.squaredNorm();
+      ++segments;
+      const Eigen::Matrix<double, 2, 4> j_line = d_line * TangentBasis(i);
+      a.noalias() += j_line.transpose() * j_line;
+      const int p = offset_of_pose(residuals_[r].pose);
+      if (p < 0) continue;
+      pose_manifold_.PlusJacobian(residuals_[r].pose, pose_plus.data());
+      b.middleCols<6>(p).noalias() += j_line.transpose() * (d_pose * pose_plus);
+    }
+    const Eigen::LDLT<Eigen::Matrix4d> ldlt(a);
+    bool pass = ldlt.info() == Eigen::Success && ldlt.isPositive();
+    if (pass) {
+      const Eigen::Matrix4d a_inverse = ldlt.solve(Eigen::Matrix4d::Identity());
+      const Eigen::Matrix<double, 4, Eigen::Dynamic> x = a_inverse * b;
+      l.covariance = a_inverse + x * pose_covariance * x.transpose();
+      const double sigma_m = std::sqrt(std::max(
+          0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(l.covariance.bottomRightCorner<2, 2>()).eigenvalues()(1)));
+      const int dof = 2 * segments - 4;
+      const double max_sigma_m = options_.triangulated_max_sigma_m;
+      const double probability = options_.triangulated_gate_probability;
+      pass = l.covariance.allFinite() && l.covariance.diagonal().minCoeff() > 0.0 &&
+             (max_sigma_m == 0.0 || sigma_m <= max_sigma_m) &&
+             (probability == 0.0 || (dof >= 1 && sum <= ChiSquareQuantile(probability, dof)));
+    }
+    l.held_back = !pass && l.refined;
+    l.refined = pass;
+  }
 }
 
 }  // namespace slt

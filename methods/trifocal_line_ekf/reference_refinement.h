@@ -17,10 +17,15 @@
 // C_left = I, C_right = the rig's right_from_left, the reference pair's pose the identity
 // (held fixed: the gauge) and the rig fixed (the scale), rho the Huber loss. Lines on the
 // 4-dof manifold, poses on SE(3) (optim/line_sfm_manifolds.h, shared with the Taylor
-// baseline). Lines the reference pair does not define (near an epipolar plane) enter once a
-// keyframe triangulates them with the reference's left image (min_triangulation_angle_deg): in
+// baseline). Lines the reference pair does not define (near an epipolar plane) are triangulated
+// once a keyframe sees them at min_triangulation_angle_deg from the reference's left image: in
 // a room these are the horizontal lines across the view, the ones that measure the vertical
-// translation when the camera moves along the other horizontal lines.
+// translation when the camera moves along the other horizontal lines. They stay out of the
+// joint solve (their small-parallax errors bent its poses); after it each is refined alone
+// against the solved poses, held fixed, with the same residuals, and reaches the filter only
+// through a consistency gate: its position's standard deviation (marginal covariance, the
+// poses' uncertainty included) at most triangulated_max_sigma_m and its residual sum within the
+// chi-square quantile triangulated_gate_probability.
 //
 // The tracker then measures against the refined L_i, with the reference endpoints' noise
 // replaced by the lines' own covariance C_i (the line's block of the inverse of the problem's
@@ -35,6 +40,7 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
+#include <ceres/problem.h>
 #include <ceres/solver.h>
 
 #include <deque>
@@ -71,6 +77,15 @@ struct ReferenceRefinementOptions {
   // (the default: on the room loop, 10 trials, it did not change the ATE beyond the spread
   // between seeds and made the covariance far too confident; docs/long_sequences.md).
   double min_triangulation_angle_deg = 0.0;
+  // Consistency gate of those triangulated lines: after each solve one is given to the filter
+  // only when its position is determined (the largest standard deviation of its tangent's
+  // moment part, its marginal covariance from the solve, at most triangulated_max_sigma_m) and
+  // its whitened residuals over the reference and the keyframes pass a chi-square test
+  // (sum <= the triangulated_gate_probability quantile, 2 dof per segment minus 4). Otherwise it
+  // stays in its solve but the filter does not measure it. 0 = no bound / no test (the
+  // defaults: on the room loop the gate, 5 cm and 0.99, made the ATE worse; docs/long_sequences.md).
+  double triangulated_max_sigma_m = 0.0;
+  double triangulated_gate_probability = 0.0;
   // A new reference pair starts from the refined lines it shares with the previous one, moved
   // into its frame with the current pose and kept as priors (SetCarriedLine), instead of their
   // stereo triangulation from the new pair alone.
@@ -117,6 +132,9 @@ class ReferenceRefiner {
                            Rigid3d* newest_cam_from_ref);
 
   bool Refined(int index) const { return lines_[index].refined; }
+  // A triangulated line the last solve refined but the consistency gate held back: the filter
+  // must stop measuring it.
+  bool HeldBack(int index) const { return lines_[index].held_back; }
   PlueckerLine Line(int index) const { return LineFromParameters(lines_[index].parameters); }
   // Covariance of the line's 4-dof tangent (LineManifold) and the 6x4 Jacobian of [n; d]
   // with respect to it.
@@ -132,6 +150,8 @@ class ReferenceRefiner {
     double parameters[kLineAmbientSize] = {};
     bool usable = false;
     bool refined = false;
+    bool triangulated = false;  // from a keyframe's temporal parallax (not the stereo pair)
+    bool held_back = false;     // triangulated, refined, and failed the gate in the last solve
     Segment2d left, right;  // in the reference pair
     Eigen::Vector3d left_line;
     Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
@@ -144,9 +164,17 @@ class ReferenceRefiner {
     std::vector<Observation> observations;
   };
 
+  // After the joint solve: the lines triangulated from keyframes, each refined alone against
+  // the solved poses and gated (reference_refinement.cc).
+  template <typename PoseOf, typename OffsetOfPose>
+  void RefineTriangulatedLines(const PoseOf& pose_of, const OffsetOfPose& offset_of_pose,
+                               const Eigen::MatrixXd& pose_covariance, const ceres::Problem& solved, size_t* used);
+
   ReferenceRefinementOptions options_;
   double sigma_px_;  // of the segment residual
   double min_triangulation_sine_;
+  std::vector<double> gate_sum_;  // per line, per solve: whitened squared residuals
+  std::vector<int> gate_segments_;
   SegmentCamera cameras_[2];
   PoseManifold pose_manifold_;
   LineManifold line_manifold_;

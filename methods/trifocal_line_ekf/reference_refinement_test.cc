@@ -109,6 +109,54 @@ TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulates
   EXPECT_LT(end_error, 1e-4 * start_error);
 }
 
+// The consistency gate of the lines triangulated from keyframes: the degenerate line reaches
+// the filter (Refined) only when its segments fit and its position is determined.
+bool DegenerateLinePassesGate(double max_sigma_m, double jitter_px) {
+  StereoRig rig;
+  ReferenceRefinementOptions options;
+  options.enabled = true;
+  options.keyframe_interval = 1;
+  options.min_triangulation_angle_deg = 2.0;
+  options.triangulated_max_sigma_m = max_sigma_m;
+  options.triangulated_gate_probability = 0.99;
+  ReferenceRefiner refiner(options, 1.0);
+  refiner.Reset(rig);
+  refiner.StartReference(static_cast<int>(kLines.size()));
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    const Seen s = Observe(rig, Rigid3d(), i);
+    refiner.SetLine(i, TrueLine(i), i != kDegenerate, s.left, s.right, s.left_line);
+  }
+  Rigid3d newest;
+  for (int k = 1; k <= 4; ++k) {
+    EXPECT_TRUE(refiner.CountFrame(KeyframePose(k)));
+    std::vector<ReferenceRefiner::Observation> observations;
+    for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+      Seen s = Observe(rig, KeyframePose(k), i);
+      if (i == kDegenerate) {
+        // Up in odd keyframes, down in even ones: no 3-D line fits them.
+        const double shift = (k % 2 == 1 ? 1.0 : -1.0) * jitter_px;
+        for (int v : {1, 3}) {
+          s.left(v) += shift;
+          s.right(v) += shift;
+        }
+        s.left_line = (rig.left.K().transpose() * LineFromSegment(s.left)).normalized();
+      }
+      observations.push_back({i, s.left, s.right, s.left_line});
+    }
+    EXPECT_TRUE(refiner.AddKeyframeAndSolve(KeyframePose(k), observations, &newest));
+  }
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    if (i != kDegenerate) EXPECT_TRUE(refiner.Refined(i)) << "line " << i;
+  }
+  return refiner.Refined(kDegenerate);
+}
+
+TEST(ReferenceRefinerTest, TriangulatedLineReachesTheFilterOnlyThroughTheConsistencyGate) {
+  EXPECT_TRUE(DegenerateLinePassesGate(1.0, 0.0));
+  EXPECT_FALSE(DegenerateLinePassesGate(1e-6, 0.0));  // position not determined to 1 um
+  EXPECT_FALSE(DegenerateLinePassesGate(1.0, 8.0));   // segments inconsistent by 8 px
+}
+
 TEST(ReferenceRefinerTest, KeyframesEveryIntervalFrames) {
   ReferenceRefinementOptions options;
   options.keyframe_interval = 3;
