@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "common/json_reader.h"
+#include "dataset/trajectory.h"
 #include "evaluation/metrics.h"
 #include "frontend/frontend_audit.h"
 #include "frontend/image_tracking.h"
@@ -193,10 +194,7 @@ std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::s
     identity.Finish();
     const FrontEndAudit::Result& r = audit.result();
     const FrontEndAudit::Result& ri = identity.result();
-    double path = 0.0;
-    for (size_t k = 1; k < sequence.ground_truth.size(); ++k) {
-      path += (sequence.ground_truth[k].world_from_cam.translation - sequence.ground_truth[k - 1].world_from_cam.translation).norm();
-    }
+    const double path = PathLengthM(sequence.ground_truth);
     const double ate_images = Ate(sequence, from_images);
     const double ate_perfect = Ate(sequence, TrackObservations(method, sequence.sequence));
     // The same observations with Gaussian endpoint noise of the front end's RMS error (the

@@ -83,6 +83,15 @@ inline const char* StatusReasonName(StatusReason reason) {
 inline constexpr double kMinAgreeingFraction = 0.25;
 inline bool FewAgree(int agreeing, int measurable) { return agreeing < kMinAgreeingFraction * measurable; }
 
+// A lost frame's pose for the trackers that keep a per-frame twist of their last measured
+// motion (taylor_line_sfm, elqursh_three_line; the EKFs damp the velocity in their state):
+// the twist is multiplied by `decay` on every lost frame (0 holds the pose) and applied on the
+// left, cam_from_world <- exp(v) cam_from_world.
+inline Rigid3d CoastAtConstantVelocity(double decay, Vector6d* velocity, const Rigid3d& cam_from_world) {
+  *velocity *= decay;
+  return ExpSE3(*velocity) * cam_from_world;
+}
+
 struct TrackerOutput {
   Rigid3d cam_from_world;  // left camera at this frame; world = left camera at the first frame
   // Covariance of cam_from_world in the trackers' perturbation convention (docs/conventions.md):

@@ -296,8 +296,7 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
                  : candidates_.empty()              ? StatusReason::kUnconstrained
                                                     : StatusReason::kFewAgree;
     ++lost_frames_;
-    velocity_ *= options_.lost_velocity_decay;
-    cam_from_world_ = ExpSE3(velocity_) * cam_from_world_;
+    cam_from_world_ = CoastAtConstantVelocity(options_.lost_velocity_decay, &velocity_, cam_from_world_);
     const bool has_lines = model_.CurrentStereoFeatures() >= options_.min_inliers;
     if (has_lines && (out.reason != StatusReason::kFewAgree || lost_frames_ > options_.max_lost_frames)) {
       SetReference(frame, cam_from_world_);

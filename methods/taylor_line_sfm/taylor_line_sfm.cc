@@ -70,8 +70,7 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
       ++counters_.degraded_frames;
     }
   } else {
-    velocity_ *= options_.lost_velocity_decay;
-    out.cam_from_world = ExpSE3(velocity_) * previous;
+    out.cam_from_world = CoastAtConstantVelocity(options_.lost_velocity_decay, &velocity_, previous);
     window_.SetNewestPose(out.cam_from_world);
     out.status = TrackingStatus::kLost;
     out.reason = out.features_available < 2 ? StatusReason::kFewMeasurable : StatusReason::kNoUpdate;

@@ -146,7 +146,9 @@ bool DegenerateLinePassesGate(double max_sigma_m, double jitter_px) {
     EXPECT_TRUE(refiner.AddKeyframeAndSolve(KeyframePose(k), observations, &newest));
   }
   for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
-    if (i != kDegenerate) EXPECT_TRUE(refiner.Refined(i)) << "line " << i;
+    if (i != kDegenerate) {
+      EXPECT_TRUE(refiner.Refined(i)) << "line " << i;
+    }
   }
   return refiner.Refined(kDegenerate);
 }
