@@ -184,6 +184,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
 
 void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
                     std::vector<ImageLine>* lines, SnapWorkspace* workspace) {
+  if (options.snap_radius_px <= 0.0) return;  // the snap is off: detections stay as detected
   const double min_sq = min_length_px * min_length_px;
   size_t kept = 0;
   for (ImageLine& line : *lines) {

@@ -68,7 +68,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
 // Detected segments moved onto the image's edges by the snap above (a coarse, fast detection
 // made precise: DetectionOptions::snap_detections), in place; a segment the snap cannot place
 // or leaves shorter than min_length_px is dropped (it would be lost at its first tracked
-// frame). `derivatives` as above.
+// frame). `derivatives` as above. With the snap off (snap_radius_px 0) nothing changes.
 void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
                     std::vector<ImageLine>* lines, SnapWorkspace* workspace);
 

@@ -107,7 +107,7 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
       for (size_t i = 0; i < images.size(); ++i) {
         const auto t0 = Clock::now();
         std::vector<ImageLine> lines = DetectLines(*detector, options, images[i]);
-        if (options.snap_detections && tracking.snap_radius_px > 0.0) {
+        if (options.snap_detections) {
           // As the front end does (the derivatives of the flow pyramid, built there anyway, are
           // not timed here).
           const auto t1 = Clock::now();

@@ -183,7 +183,7 @@ void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right) {
   Clock::time_point t0 = Clock::now();
   detections_[0] = DetectLines(*detector_, options_.detection, left);
   detections_[1] = DetectLines(*detector_, options_.detection, right);
-  if (options_.detection.snap_detections && options_.tracking.snap_radius_px > 0.0) {  // radius 0: no snap
+  if (options_.detection.snap_detections) {
     for (int c = 0; c < 2; ++c) {
       SnapDetections(options_.tracking, options_.detection.min_length_px, current_[c][1], &detections_[c], &snap_);
     }
