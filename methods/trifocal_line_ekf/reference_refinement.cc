@@ -284,8 +284,6 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(line_rows, pose_rows);
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(pose_rows, pose_rows);
   Eigen::Vector2d residual;
-  gate_sum_.assign(lines_.size(), 0.0);
-  gate_segments_.assign(lines_.size(), 0);
   Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
   Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
   Eigen::Matrix<double, kPoseAmbientSize, 6, Eigen::RowMajor> pose_plus;
@@ -294,8 +292,6 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     const double* parameters[2] = {residuals_[k].pose, lines_[line].parameters};
     double* jacobians[2] = {d_pose.data(), d_line.data()};
     if (!costs_[k].Evaluate(parameters, residual.data(), jacobians)) continue;
-    gate_sum_[line] += residual.squaredNorm();
-    ++gate_segments_[line];
     const Eigen::Matrix<double, 2, 4> j_line = d_line * TangentBasis(line);
     const int l = line_offset[line];
     a_blocks.block<4, 4>(l, 0).noalias() += j_line.transpose() * j_line;

@@ -173,8 +173,6 @@ class ReferenceRefiner {
   ReferenceRefinementOptions options_;
   double sigma_px_;  // of the segment residual
   double min_triangulation_sine_;
-  std::vector<double> gate_sum_;  // per line, per solve: whitened squared residuals
-  std::vector<int> gate_segments_;
   SegmentCamera cameras_[2];
   PoseManifold pose_manifold_;
   LineManifold line_manifold_;
