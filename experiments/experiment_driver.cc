@@ -15,12 +15,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// True when `dir` holds nothing but other runs' shard outputs (raw/shards/), or nothing.
+bool HoldsOnlyShards(const fs::path& dir) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    if (entry.path().filename() != "raw" || !entry.is_directory()) return false;
+    for (const fs::directory_entry& sub : fs::directory_iterator(entry.path())) {
+      if (sub.path().filename() != "shards") return false;
+    }
+  }
+  return true;
+}
+
 // An out_dir that exists must be a directory: the swap would replace a file (a config given as
-// --out) with the results.
+// --out) with the results. And it must be an earlier run's output (its run.json) or hold nothing
+// but shards: the swap replaces it whole, and files a user put there would go with it.
 void CheckOutputDir(const std::string& out_dir) {
   std::error_code error;
-  if (fs::exists(out_dir, error) && !fs::is_directory(out_dir, error)) {
-    throw std::runtime_error("--out " + out_dir + ": exists and is not a directory");
+  if (!fs::exists(out_dir, error)) return;
+  if (!fs::is_directory(out_dir, error)) throw std::runtime_error("--out " + out_dir + ": exists and is not a directory");
+  if (!fs::exists(fs::path(out_dir) / "run.json", error) && !HoldsOnlyShards(out_dir)) {
+    throw std::runtime_error("--out " + out_dir +
+                             ": holds files no run_experiment wrote (it has no run.json) and the run replaces the "
+                             "directory whole; give a new or empty directory, or move those files out");
   }
 }
 
