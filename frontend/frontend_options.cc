@@ -37,6 +37,8 @@ const OptionSchema<MatchingOptions>& MatchingOptionsSchema() {
           .Field("max_msld_distance", &M::max_msld_distance, InRange(0.0, 2.0, "(]"), "largest MSLD descriptor distance")
           .Field("msld_ratio", &M::msld_ratio, InRange(0.0, 1.0, "(]"), "best / second-best MSLD distance at most (1 = off)")
           .Field("min_overlap", &M::min_overlap, InRange(0.0, 1.0), "overlap in the epipolar beam, fraction of the shorter segment")
+          .Field("min_union_overlap", &M::min_union_overlap, InRange(0.0, 1.0), "overlap in the epipolar beam, fraction of the union of the two extents (0 = off)")
+          .Field("max_previous_px", &M::max_previous_px, InRange(0.0, 20.0), "temporal check: the match's 3-D line moved into the previous pair within this of an edge, px (0 = off)")
           .Field("min_disparity_px", &M::min_disparity_px, AnyNumber().Finite(), "smallest disparity of a rectified rig, px")
           .Field("max_disparity_px", &M::max_disparity_px, AnyNumber().Finite(), "largest disparity of a rectified rig, px")
           .Field("epipolar_angle_deg", &M::epipolar_angle_deg, InRange(0.0, 45.0), "lines closer to the epipolar direction are matched along it, deg")

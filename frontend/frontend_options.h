@@ -62,12 +62,22 @@ struct MatchingOptions {
   int ncc_half_width_px = 3;
   // Largest Euclidean distance between the two MSLD descriptors (unit vectors, 72 values).
   double max_msld_distance = 0.6;
-  // The best candidate must be this much closer in MSLD distance than the second best (ratio
-  // test; 1 = off).
-  double msld_ratio = 0.9;
+  // The best candidate must be this much closer in MSLD distance than the second best, both
+  // ways (Lowe's ratio test, at his 0.8; 1 = off): among look-alike lines (the paper scene's
+  // bars, docs/frontend.md) a best candidate barely better than the next is a guess.
+  double msld_ratio = 0.8;
   // Overlap of the two segments inside each other's epipolar beam, as a fraction of the shorter
   // one (the beam constraint of Sec. 3.1 asks for a non-empty overlap).
   double min_overlap = 0.5;
+  // The same overlap as a fraction of the union of the two extents (0 = off): segments of one
+  // 3-D line cover the same rows in both images unless an end is occluded or clipped, a pair of
+  // two different lines that share some rows rarely does.
+  double min_union_overlap = 0.0;
+  // Temporal verification (stereo_matching.h, SeenInPreviousPair): a new match whose 3-D line,
+  // moved into the previous stereo pair by the tracker's predicted camera motion, does not lie
+  // within this distance of an edge in both previous images is dropped; px (0 = off; no check
+  // on the first pair or without a prediction).
+  double max_previous_px = 0.0;
   // Disparity range of a rectified rig, pixels (left u minus right u at the same row).
   double min_disparity_px = 0.0;
   double max_disparity_px = 256.0;

@@ -49,7 +49,7 @@ const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& r
   if (started_) Track(predicted_motion);
   const int before = static_cast<int>(stats_.tracked + stats_.lost);
   stats_.rematch = started_ && before > 0 && stats_.tracked < options_.motion.rematch_below_fraction * before;
-  if (detect_new_lines || !started_ || stats_.rematch) DetectAndMatch(left, right);
+  if (detect_new_lines || !started_ || stats_.rematch) DetectAndMatch(left, right, predicted_motion);
   if (stats_.rematch) Rematch();
   if (detect_new_lines || !started_) AddNewLines();
   started_ = true;
@@ -178,7 +178,8 @@ bool StereoFrontEnd::DuplicatesLiveLine(const Segment2d& segment, int c) const {
   return false;
 }
 
-void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right) {
+void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right,
+                                    const std::optional<Rigid3d>& predicted_motion) {
   stats_.detected = true;
   Clock::time_point t0 = Clock::now();
   detections_[0] = DetectLines(*detector_, options_.detection, left);
@@ -213,6 +214,17 @@ void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right) {
 
   t0 = Clock::now();
   matcher_.Match(left, right, detections_[0], descriptors_[0], detections_[1], descriptors_[1], &matches_);
+  if (options_.matching.max_previous_px > 0.0 && started_ && predicted_motion.has_value()) {
+    const Rigid3d previous_from_current = predicted_motion->Inverse();
+    const cv::Mat previous_derivatives[2] = {previous_[0][1], previous_[1][1]};
+    matches_.erase(std::remove_if(matches_.begin(), matches_.end(),
+                                  [&](const StereoMatch& m) {
+                                    return !SeenInPreviousPair(rig_, previous_from_current, detections_[0][m.left].segment,
+                                                               detections_[1][m.right].segment, previous_derivatives,
+                                                               options_.tracking, options_.matching.max_previous_px, &snap_);
+                                  }),
+                   matches_.end());
+  }
   stats_.matched = static_cast<int>(matches_.size());
   stats_.times.match += Since(t0);
 }

@@ -105,8 +105,9 @@ class StereoFrontEnd {
     bool from_prediction;  // predicted from the camera motion (else from the image motion)
   };
   void Track(const std::optional<Rigid3d>& predicted_motion);
-  // Detection, description and stereo matching of the pair (detections_, descriptors_, matches_).
-  void DetectAndMatch(const cv::Mat& left, const cv::Mat& right);
+  // Detection, description and stereo matching of the pair (detections_, descriptors_, matches_),
+  // matches verified against the previous pair with the predicted motion (matching.max_previous_px).
+  void DetectAndMatch(const cv::Mat& left, const cv::Mat& right, const std::optional<Rigid3d>& predicted_motion);
   // Looks for the lost lines among the matches.
   void Rematch();
   // New live lines from the matches that duplicate none.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 
 #include "frontend/line_motion.h"
 #include "frontend/rendered_pair.h"
@@ -82,6 +83,41 @@ TEST(StereoFrontEnd, DetectionsOnLiveLinesAreNotMatchedAgainAndTheSnapCanBeOff) 
   options.tracking.snap_radius_px = 0.0;
   StereoFrontEnd unsnapped(options, room.rig());
   EXPECT_GE(unsnapped.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true).left.size(), 0.8 * first);
+}
+
+TEST(StereoFrontEnd, NewMatchesAreCheckedAgainstThePreviousPairWithThePredictedMotion) {
+  // Paper scene frames 19 and 20, detection on both; the second pair's matches with and
+  // without matching.max_previous_px, given the true motion as the prediction.
+  const RenderedPaper paper(21);
+  const auto second_pair = [&](double max_previous_px, bool with_prediction) {
+    FrontEndOptions options;
+    options.matching.max_previous_px = max_previous_px;
+    auto front_end = std::make_unique<StereoFrontEnd>(options, paper.rig());
+    front_end->Process(paper.Image(19, 0), paper.Image(19, 1), 0.0, true);
+    const std::optional<Rigid3d> motion =
+        with_prediction ? std::optional<Rigid3d>(paper.Motion(19, 20)) : std::nullopt;
+    front_end->Process(paper.Image(20, 0), paper.Image(20, 1), 1.0, true, motion);
+    return front_end;
+  };
+  const size_t all = second_pair(0.0, true)->last_matches().size();
+  const std::unique_ptr<StereoFrontEnd> on = second_pair(2.0, true);
+  const size_t checked = on->last_matches().size();
+  // Without a prediction there is nothing to move the lines by: no check.
+  EXPECT_EQ(second_pair(2.0, false)->last_matches().size(), second_pair(0.0, false)->last_matches().size());
+  ASSERT_GE(all, 10u);
+  EXPECT_LT(checked, all);
+  EXPECT_GT(checked, 0u);
+  // Every kept match passes the check on the previous pair.
+  const LineFlowTracker flow(FrontEndOptions().tracking);
+  ImagePyramid previous[2];
+  for (int c = 0; c < 2; ++c) flow.BuildPyramid(paper.Image(19, c), &previous[c]);
+  const cv::Mat derivatives[2] = {previous[0][1], previous[1][1]};
+  SnapWorkspace workspace;
+  for (const StereoMatch& m : on->last_matches()) {
+    EXPECT_TRUE(SeenInPreviousPair(paper.rig(), paper.Motion(20, 19), on->last_detections(0)[m.left].segment,
+                                   on->last_detections(1)[m.right].segment, derivatives, FrontEndOptions().tracking, 2.0,
+                                   &workspace));
+  }
 }
 
 TEST(LineMotion, PlaneHomographiesMoveTheLinesPointsExactly) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "frontend/image_sampling.h"
+#include "frontend/line_motion.h"
 #include "geometry/se3.h"
 
 namespace slt {
@@ -42,7 +43,7 @@ double StereoGeometry::EpipolarSine(const Segment2d& left) const {
 }
 
 double StereoGeometry::BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine,
-                                   double epipolar_distance_px) const {
+                                   double epipolar_distance_px, OverlapOf of) const {
   const Eigen::Vector2d x = left.head<2>(), y = left.tail<2>();
   const double length = (y - x).norm();
   if (EpipolarSine(left) < epipolar_sine) {
@@ -62,9 +63,9 @@ double StereoGeometry::BeamOverlap(const Segment2d& left, const Segment2d& right
   }
   const double lo = std::min(t[0], t[1]), hi = std::max(t[0], t[1]);
   const double overlap = std::min(hi, length) - std::max(lo, 0.0);
-  const double shorter = std::min(length, hi - lo);
-  if (overlap <= 0.0 || shorter <= 0.0) return 0.0;
-  return std::min(1.0, overlap / shorter);
+  const double base = of == OverlapOf::kShorter ? std::min(length, hi - lo) : std::max(hi, length) - std::min(lo, 0.0);
+  if (overlap <= 0.0 || base <= 0.0) return 0.0;
+  return std::min(1.0, overlap / base);
 }
 
 bool StereoGeometry::DisparityInRange(const Segment2d& left, const Segment2d& right, double min_px,
@@ -74,13 +75,14 @@ bool StereoGeometry::DisparityInRange(const Segment2d& left, const Segment2d& ri
   const double rv0 = std::min(right[1], right[3]), rv1 = std::max(right[1], right[3]);
   const double v0 = std::max(lv0, rv0), v1 = std::min(lv1, rv1);
   if (v1 - v0 >= 1.0) {
-    // The disparity at the middle row of the common rows.
-    const double v = 0.5 * (v0 + v1);
-    const auto u_at = [v](const Segment2d& s) {
-      return s[0] + (s[2] - s[0]) * (v - s[1]) / (s[3] - s[1]);
+    // The disparity along a pair of image lines is linear in the row: in range over the common
+    // rows when it is at both of their ends.
+    const auto disparity_at = [&](double v) {
+      const auto u_at = [v](const Segment2d& s) { return s[0] + (s[2] - s[0]) * (v - s[1]) / (s[3] - s[1]); };
+      return u_at(left) - u_at(right);
     };
-    const double disparity = u_at(left) - u_at(right);
-    return disparity >= min_px && disparity <= max_px;
+    const double d0 = disparity_at(v0), d1 = disparity_at(v1);
+    return std::min(d0, d1) >= min_px && std::max(d0, d1) <= max_px;
   }
   // Along the rows: some disparity in range must make the u ranges overlap.
   const double lu0 = std::min(left[0], left[2]), lu1 = std::max(left[0], left[2]);
@@ -140,6 +142,29 @@ double SegmentCrossCorrelation(const StereoGeometry& geometry, const cv::Mat& le
   return (slr / count - ml * mr) / std::sqrt(vl * vr);
 }
 
+bool SeenInPreviousPair(const StereoRig& rig, const Rigid3d& previous_from_current, const Segment2d& left,
+                        const Segment2d& right, const cv::Mat* previous_derivatives, const TrackingOptions& snap,
+                        double max_distance_px, SnapWorkspace* workspace) {
+  // Planes closer than this (sine of their angle) are one plane: no depth (stereo_frontend.cc).
+  constexpr double kMinPlaneSine = 1e-6;
+  StereoLineMaps maps;
+  if (!PredictStereoLineMotion(rig, previous_from_current, left, right, kMinPlaneSine, &maps)) return false;
+  TrackingOptions search = snap;
+  search.snap_radius_px = max_distance_px;
+  for (int c = 0; c < 2; ++c) {
+    Segment2d mapped;
+    if (!MapSegment(c == 0 ? maps.left : maps.right, c == 0 ? left : right, &mapped)) return false;
+    Segment2d snapped = mapped;
+    if (!SnapSegmentToEdges(search, previous_derivatives[c], &snapped, workspace)) return false;
+    const Eigen::Vector2d a = snapped.head<2>(), d = (snapped.tail<2>() - a).normalized();
+    const Eigen::Vector2d n(-d.y(), d.x());
+    if (std::abs(n.dot(mapped.head<2>() - a)) > max_distance_px || std::abs(n.dot(mapped.tail<2>() - a)) > max_distance_px) {
+      return false;
+    }
+  }
+  return true;
+}
+
 StereoMatcher::StereoMatcher(const MatchingOptions& options, const StereoRig& rig)
     : options_(options), geometry_(rig), epipolar_sine_(std::sin(options.epipolar_angle_deg * M_PI / 180.0)) {}
 
@@ -191,6 +216,13 @@ void StereoMatcher::Match(const cv::Mat& left_grey, const cv::Mat& right_grey, c
     const int j = best_left_index_[i];
     if (j < 0 || best_right_index_[j] != i || best_left_[i] > max_distance) continue;  // mutual best
     if (ratio < 1.0f && (best_left_[i] > ratio * second_left_[i] || best_right_[j] > ratio * second_right_[j])) {
+      continue;
+    }
+    // After the uniqueness tests, which weigh every candidate of the beam: a verification of
+    // the chosen pair, like the cross-correlation below.
+    if (options_.min_union_overlap > 0.0 &&
+        geometry_.BeamOverlap(left[i].segment, right[j].segment, epipolar_sine_, options_.epipolar_distance_px,
+                              StereoGeometry::OverlapOf::kUnion) < options_.min_union_overlap) {
       continue;
     }
     const bool along = geometry_.EpipolarSine(left[i].segment) < epipolar_sine_;

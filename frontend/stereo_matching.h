@@ -29,8 +29,10 @@
 
 #include "frontend/frontend_options.h"
 #include "frontend/line_detection.h"
+#include "frontend/line_tracking.h"
 #include "frontend/msld.h"
 #include "geometry/camera.h"
+#include "geometry/rigid3.h"
 
 namespace slt {
 
@@ -48,12 +50,15 @@ class StereoGeometry {
   const Eigen::Matrix3d& F() const { return f_; }
   bool rectified() const { return rectified_; }
 
-  // Beam overlap (see above) of two segments as a fraction of the shorter, in [0, 1]; for
-  // segments along the epipolar direction, 1 when the right one lies on the left one's
-  // epipolar line within `epipolar_distance_px`, else 0.
-  double BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine,
-                     double epipolar_distance_px) const;
-  // Whether the pair is in the disparity range (always true for a rig that is not rectified).
+  // Beam overlap (see above) of two segments as a fraction of the shorter (kShorter) or of the
+  // union of the two extents (kUnion: 1 only when they cover the same part of the beam), in
+  // [0, 1]; for segments along the epipolar direction, 1 when the right one lies on the left
+  // one's epipolar line within `epipolar_distance_px`, else 0.
+  enum class OverlapOf { kShorter, kUnion };
+  double BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine, double epipolar_distance_px,
+                     OverlapOf of = OverlapOf::kShorter) const;
+  // Whether the pair is in the disparity range at both ends of their common rows (always true
+  // for a rig that is not rectified).
   bool DisparityInRange(const Segment2d& left, const Segment2d& right, double min_px, double max_px) const;
   // |sine| of the angle between the left segment and the epipolar line through its midpoint.
   double EpipolarSine(const Segment2d& left) const;
@@ -71,6 +76,21 @@ class StereoGeometry {
 // have no overlap to compare.
 double SegmentCrossCorrelation(const StereoGeometry& geometry, const cv::Mat& left_grey, const cv::Mat& right_grey,
                                const Segment2d& left, const Segment2d& right, bool along_epipolar, int half_width);
+
+// Temporal verification of a stereo match (matching.max_previous_px): the pair's 3-D line,
+// moved into the previous stereo pair by the camera motion `previous_from_current`
+// (line_motion.h: each image's segment mapped by the plane homography of the other camera's
+// back-projected plane), must lie on an edge there in both images: the edge snap
+// (line_tracking.h, radius max_distance_px) finds it, and both mapped endpoints lie within
+// max_distance_px of the snapped line. A pair of two different lines with common rows
+// triangulates to a 3-D line at a wrong depth and direction, which the motion moves elsewhere
+// than the true lines (paper scene, docs/frontend.md); the error of the motion (a tracker's
+// prediction) must stay under the bound. `previous_derivatives`: the level-0 derivatives of
+// the previous pair's pyramids (left, right). False also when the line cannot be placed (its
+// points not in front of both cameras, or a line in an epipolar plane: no depth to move it by).
+bool SeenInPreviousPair(const StereoRig& rig, const Rigid3d& previous_from_current, const Segment2d& left,
+                        const Segment2d& right, const cv::Mat* previous_derivatives, const TrackingOptions& snap,
+                        double max_distance_px, SnapWorkspace* workspace);
 
 class StereoMatcher {
  public:
