@@ -123,6 +123,12 @@ struct TrackingOptions {
   double snap_min_fraction = 0.5;
   // Smallest gradient across the line that counts as an edge, grey levels per pixel.
   double snap_min_gradient = 1.0;
+  // The snap's line is lost when the standard error of its direction, from the edge points'
+  // residuals and spread along it (sigma = rms / sqrt(sum (t - mean t)^2)), exceeds this, deg
+  // (0 = off): a short segment on scattered edge points has an undetermined angle, and a wrong
+  // one is worse than none to the tracker. Tracked lines only (SnapDetections does not apply
+  // it: a new line is checked at its first tracked frame).
+  double max_angle_sigma_deg = 0.3;
   // A tracked pair is dropped when its segments no longer overlap in each other's epipolar beam
   // by this fraction (stereo consistency), or leave the disparity range.
   double min_stereo_overlap = 0.3;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <opencv2/video/tracking.hpp>
 
@@ -151,6 +152,22 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
     edge_points->resize(kept);
     if (kept < needed || !FitLine(*edge_points, nullptr, kept, &line)) return false;
   }
+  if (options.max_angle_sigma_deg > 0.0) {
+    // The fitted direction's standard error, sigma_theta = rms / sqrt(sum (t - mean t)^2): a
+    // short segment or scattered edge points leave it undetermined.
+    const Eigen::Vector2d dir(line.y(), -line.x());
+    double residual_sq = 0.0, st = 0.0, stt = 0.0;
+    for (const Eigen::Vector2d& x : *edge_points) {
+      const double r = line.head<2>().dot(x) + line.z(), t = dir.dot(x);
+      residual_sq += r * r;
+      st += t;
+      stt += t * t;
+    }
+    const double count = static_cast<double>(edge_points->size());
+    const double spread = stt - st * st / count;
+    const double sigma = spread > 0.0 ? std::sqrt(residual_sq / std::max(1.0, count - 2.0) / spread) : std::numeric_limits<double>::infinity();
+    if (sigma * 180.0 / M_PI > options.max_angle_sigma_deg) return false;
+  }
   const Eigen::Vector2d normal = line.head<2>();
   Eigen::Vector2d p = a - (normal.dot(a) + line.z()) * normal, q = b - (normal.dot(b) + line.z()) * normal;
   // Trimmed to the extent of the edge on the fitted line (plus the margin and half a place):
@@ -185,10 +202,14 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
 void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
                     std::vector<ImageLine>* lines, SnapWorkspace* workspace) {
   if (options.snap_radius_px <= 0.0) return;  // the snap is off: detections stay as detected
+  // A tracked line's angle is measured once per frame from its own edge points; a detection's
+  // is checked where it is tracked (the direction test is the tracker's loss test).
+  TrackingOptions snap = options;
+  snap.max_angle_sigma_deg = 0.0;
   const double min_sq = min_length_px * min_length_px;
   size_t kept = 0;
   for (ImageLine& line : *lines) {
-    if (!SnapSegmentToEdges(options, derivatives, &line.segment, workspace)) continue;
+    if (!SnapSegmentToEdges(snap, derivatives, &line.segment, workspace)) continue;
     if ((line.segment.tail<2>() - line.segment.head<2>()).squaredNorm() < min_sq) continue;
     (*lines)[kept++] = line;
   }

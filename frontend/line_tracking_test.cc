@@ -120,6 +120,34 @@ TEST(SnapSegmentToEdges, MovesASegmentOntoTheEdgeAndLosesItWithoutOne) {
   EXPECT_FALSE(SnapSegmentToEdges(options, pyramid[1], &flat, &workspace));
 }
 
+TEST(SnapSegmentToEdges, LosesAShortSegmentWhoseDirectionTheEdgePointsDoNotDetermine) {
+  // The step edge with image noise (20 grey levels, seeded): the edge points scatter, which
+  // leaves the direction of a 30-px segment less determined than that of an 80-px one.
+  const Eigen::Vector2d p(150.3, 117.6), d = Eigen::Vector2d(1.0, 0.35).normalized();
+  cv::Mat image = StepEdgeImage(p, d), noise(image.size(), CV_16SC1);
+  cv::theRNG().state = 7;
+  cv::randn(noise, 0.0, 20.0);
+  image.convertTo(image, CV_16SC1);
+  image += noise;
+  image.convertTo(image, CV_8UC1);
+  TrackingOptions options;
+  LineFlowTracker tracker(options);
+  ImagePyramid pyramid;
+  tracker.BuildPyramid(image, &pyramid);
+  SnapWorkspace workspace;
+  const auto snapped = [&](double half_length, double max_angle_sigma_deg) {
+    options.max_angle_sigma_deg = max_angle_sigma_deg;
+    const Eigen::Vector2d a = p - half_length * d, b = p + half_length * d;
+    Segment2d segment(a.x(), a.y(), b.x(), b.y());
+    return SnapSegmentToEdges(options, pyramid[1], &segment, &workspace);
+  };
+  EXPECT_TRUE(snapped(15.0, 0.0));  // without the test, both are kept
+  EXPECT_TRUE(snapped(40.0, 0.0));
+  // Measured: the 30-px segment's sigma is 0.2-0.3 deg, the 80-px one's under 0.1.
+  EXPECT_FALSE(snapped(15.0, 0.15));
+  EXPECT_TRUE(snapped(40.0, 0.15));
+}
+
 TEST(SnapDetections, MovesDetectionsOntoTheEdgeAndDropsThoseItCannotPlace) {
   const Eigen::Vector2d p(150.3, 117.6), d = Eigen::Vector2d(1.0, 0.35).normalized(), n(-d.y(), d.x());
   const cv::Mat image = StepEdgeImage(p, d);
