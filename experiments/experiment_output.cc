@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -27,9 +26,6 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
     SLT_TRIAL_METRICS(SLT_METRIC_INFO)
 #undef SLT_METRIC_INFO
 };
-
-// Display name of a metric with its unit, e.g. "Rotation error (deg)".
-std::string MetricTitle(int metric) { return kMetrics[metric].title; }
 
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
 
@@ -92,15 +88,10 @@ std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> GroupTrials
   return groups;
 }
 
+// Three significant digits, whole numbers from 1000 up.
 std::string Sig(double v) {
   if (!std::isfinite(v)) return std::isnan(v) ? "n/a" : (v > 0 ? "inf" : "-inf");
-  char buffer[64];
-  if (std::fabs(v) >= 1000.0) {
-    std::snprintf(buffer, sizeof(buffer), "%.0f", v);
-  } else {
-    std::snprintf(buffer, sizeof(buffer), "%.3g", v);
-  }
-  return buffer;
+  return std::fabs(v) >= 1000.0 ? StringPrintf("%.0f", v) : StringPrintf("%.3g", v);
 }
 
 std::vector<int> TableMetrics(const ExperimentConfig& config) {
@@ -122,7 +113,7 @@ Table SummaryTable(const ExperimentConfig& config, const std::vector<SummaryRow>
   for (const SweepAxis& a : config.sweep) table.columns.emplace_back(a.label);
   table.columns.emplace_back("Trials");
   for (int m : TableMetrics(config)) {
-    table.groups.push_back({MetricTitle(m), table.columns.size(), 3});
+    table.groups.push_back({kMetrics[m].title, table.columns.size(), 3});
     table.columns.emplace_back("mean");
     table.columns.emplace_back("median");
     table.columns.emplace_back("95 % interval", Table::Align::kRight, "95\\,\\% interval");
