@@ -197,30 +197,20 @@ TEST(StereoLinesIo, ReadsHandWrittenFile) {
   EXPECT_EQ(s.frames[1].time, 0.05);
   EXPECT_EQ(s.frames[2].time, 0.05);
 
-  const std::vector<LineObservation>& left0 = s.frames[0].left;
-  ASSERT_EQ(left0.size(), 3u);
-  EXPECT_EQ(left0[0].id, 3);
-  EXPECT_EQ(left0[0].segment, Segment2d(110, 50, 150, 52.75));
-  EXPECT_EQ(left0[1].id, 17);
-  EXPECT_EQ(left0[1].segment, Segment2d(320.5, 200, 330, 260));
-  EXPECT_EQ(left0[2].id, -2);  // left image only
-  EXPECT_EQ(left0[2].segment, Segment2d(5, 6, 7, 8));
-  const std::vector<LineObservation>& right0 = s.frames[0].right;
-  ASSERT_EQ(right0.size(), 2u);
-  EXPECT_EQ(right0[0].id, 17);
-  EXPECT_EQ(right0[0].segment, Segment2d(300, 200.5, 310, 260));
-  EXPECT_EQ(right0[1].id, 3);
-  EXPECT_EQ(right0[1].segment, Segment2d(100.25, 50, 140, 52));
-
+  // Id and segment of each observation, in the file's order.
+  using Observed = std::vector<std::pair<std::int64_t, std::vector<double>>>;
+  const auto observed = [](const std::vector<LineObservation>& observations) {
+    Observed out;
+    for (const LineObservation& o : observations) out.push_back({o.id, {o.segment.data(), o.segment.data() + 4}});
+    return out;
+  };
+  EXPECT_EQ(observed(s.frames[0].left),
+            (Observed{{3, {110, 50, 150, 52.75}}, {17, {320.5, 200, 330, 260}}, {-2, {5, 6, 7, 8}}}));  // -2: left only
+  EXPECT_EQ(observed(s.frames[0].right), (Observed{{17, {300, 200.5, 310, 260}}, {3, {100.25, 50, 140, 52}}}));
   EXPECT_TRUE(s.frames[1].left.empty());
   EXPECT_TRUE(s.frames[1].right.empty());
-
-  ASSERT_EQ(s.frames[2].left.size(), 1u);
-  EXPECT_EQ(s.frames[2].left[0].id, 1000000000000);
-  EXPECT_EQ(s.frames[2].left[0].segment, Segment2d(1, 2, 3, 4.5));
-  ASSERT_EQ(s.frames[2].right.size(), 1u);
-  EXPECT_EQ(s.frames[2].right[0].id, 42);
-  EXPECT_EQ(s.frames[2].right[0].segment, Segment2d(600, 470, 630, 10));
+  EXPECT_EQ(observed(s.frames[2].left), (Observed{{1000000000000, {1, 2, 3, 4.5}}}));
+  EXPECT_EQ(observed(s.frames[2].right), (Observed{{42, {600, 470, 630, 10}}}));
 }
 
 TEST(StereoLinesIo, AcceptsIntegralFloatIds) {
