@@ -57,13 +57,10 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
     }
   }
 
-  // Reference rows by (method id, sweep values); the same sweep (checked above) has the same columns.
-  std::map<std::pair<std::string, std::vector<std::string>>, size_t> by_key;
-  const std::vector<std::string> sweep_columns = SweepColumns(config);
+  // Reference rows by (method id, sweep point): the same sweep (checked above) has the same points.
+  std::map<std::pair<std::string, std::string>, size_t> by_key;
   for (size_t r = 0; r < reference.rows.size(); ++r) {
-    std::vector<std::string> values;
-    for (const std::string& c : sweep_columns) values.push_back(reference.rows[r][reference.Column(c)]);
-    by_key[{reference.rows[r][method_column], values}] = r;
+    by_key[{reference.rows[r][method_column], reference.rows[r][reference.Column("point")]}] = r;
   }
 
   const struct {
@@ -77,9 +74,7 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
       no_reference.insert(id);
       continue;
     }
-    std::vector<std::string> values;
-    for (const nlohmann::json& v : points.at(row.point).values) values.push_back(FormatValue(v));
-    const auto it = by_key.find({id, values});
+    const auto it = by_key.find({id, std::to_string(row.point)});
     const std::string at = "'" + id + "' at " + PointText(config, points.at(row.point));
     if (it == by_key.end()) {
       report.failures.push_back(at + ": no reference row (the sweep changed? regenerate with scripts/update_references.sh)");
