@@ -21,6 +21,7 @@
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
+#include "common/table.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
 #include "frontend/frontend_viz.h"
@@ -131,9 +132,8 @@ int main(int argc, char** argv) {
       if (show_progress) {
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const int done = k - first + 1;
-        char extra[64];
-        std::snprintf(extra, sizeof(extra), " %.1f fps  %d lines ", done / std::max(elapsed, 1e-9), stats.live);
-        progress.Update(static_cast<size_t>(done), static_cast<size_t>(end - first), extra);
+        progress.Update(static_cast<size_t>(done), static_cast<size_t>(end - first),
+                        StringPrintf(" %.1f fps  %d lines ", done / std::max(elapsed, 1e-9), stats.live));
       }
     }
     WriteTumTrajectory(output, trajectory);
