@@ -35,6 +35,11 @@ struct StereoLineMaps {
 bool StereoSegmentEndpoints(const StereoRig& rig, const Segment2d& left, const Segment2d& right,
                             Eigen::Vector3d* first, Eigen::Vector3d* second);
 
+// Back-projected planes closer than this (sine of their angle) are numerically one plane. Far
+// lines have nearly coincident planes too, but there the depth matters little to the
+// prediction; lines near the epipolar direction are excluded by the image angle instead.
+constexpr double kMinStereoPlaneSine = 1e-6;
+
 // The maps of the pair (left, right) (pixel segments of the rig's images) under the left
 // camera's motion `next_from_previous`. False (maps unspecified) when the two back-projected
 // planes meet at less than `min_plane_sine` (sine of the angle) or the line's points at the

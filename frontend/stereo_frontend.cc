@@ -15,11 +15,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Back-projected planes closer than this (sine of their angle) are numerically one plane. Far
-// lines have nearly coincident planes too, but there the depth matters little to the
-// prediction; lines near the epipolar direction are excluded by the image angle instead.
-constexpr double kMinPlaneSine = 1e-6;
-
 }  // namespace
 
 StereoFrontEnd::StereoFrontEnd(const FrontEndOptions& options, const StereoRig& rig)
@@ -93,7 +88,7 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
     // A line near the epipolar direction has no depth from the pair (its two back-projected
     // planes nearly coincide).
     if (use_camera && geometry.EpipolarSine(line.left) >= epipolar_sine &&
-        PredictStereoLineMotion(rig_, *predicted_motion, line.left, line.right, kMinPlaneSine, &maps, &depth)) {
+        PredictStereoLineMotion(rig_, *predicted_motion, line.left, line.right, kMinStereoPlaneSine, &maps, &depth)) {
       from_prediction_[i] = 1;
       depths_.push_back(depth);
     } else if (motion.seed != FlowSeed::kNone && line.has_shift) {

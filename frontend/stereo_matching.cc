@@ -145,12 +145,12 @@ double SegmentCrossCorrelation(const StereoGeometry& geometry, const cv::Mat& le
 bool SeenInPreviousPair(const StereoRig& rig, const Rigid3d& previous_from_current, const Segment2d& left,
                         const Segment2d& right, const cv::Mat* previous_derivatives, const TrackingOptions& snap,
                         double max_distance_px, SnapWorkspace* workspace) {
-  // Planes closer than this (sine of their angle) are one plane: no depth (stereo_frontend.cc).
-  constexpr double kMinPlaneSine = 1e-6;
   StereoLineMaps maps;
-  if (!PredictStereoLineMotion(rig, previous_from_current, left, right, kMinPlaneSine, &maps)) return false;
+  if (!PredictStereoLineMotion(rig, previous_from_current, left, right, kMinStereoPlaneSine, &maps)) return false;
+  // Where the line is, not how well its direction is determined (the tracker's test).
   TrackingOptions search = snap;
   search.snap_radius_px = max_distance_px;
+  search.max_angle_sigma_deg = 0.0;
   for (int c = 0; c < 2; ++c) {
     Segment2d mapped;
     if (!MapSegment(c == 0 ? maps.left : maps.right, c == 0 ? left : right, &mapped)) return false;
