@@ -177,10 +177,6 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     out.refined = false;
   }
   if (refiner_) {
-    // The pose that carries the lines (the filter's, here) is taken to have the uncertainty of
-    // the last solve's newest keyframe, and the lines' correlation with it.
-    const bool with_pose = options_.refinement.carry_pose_covariance && refiner_->HasNewestPoseCovariance();
-    const Matrix6d pose_covariance = refiner_->NewestPoseCovariance();
     refiner_->StartReference(static_cast<int>(reference_.size()));
     for (size_t i = 0; i < reference_.size(); ++i) {
       refiner_->SetLine(static_cast<int>(i), reference_lines_[i].line, !reference_[i].degenerate,
@@ -201,19 +197,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
       const Eigen::Matrix<double, 4, 6> pseudo_inverse =
           (basis.transpose() * basis).ldlt().solve(basis.transpose());
       const Eigen::Matrix<double, 4, 4> move = pseudo_inverse * transform * old.line_d_tangent;
-      Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
-      if (with_pose) {
-        // L_new = Exp(xi) (new_from_old L_old) for a left perturbation xi = [v; w] of the pose:
-        // n += w x n + v x d, d += w x d.
-        const PlueckerLine moved = refiner_->Line(index);
-        Matrix6d d_pose = Matrix6d::Zero();
-        d_pose.topLeftCorner<3, 3>() = -Skew(moved.direction);
-        d_pose.topRightCorner<3, 3>() = -Skew(moved.moment);
-        d_pose.bottomRightCorner<3, 3>() = -Skew(moved.direction);
-        const Eigen::Matrix<double, 4, 6> by_pose = pseudo_inverse * d_pose;
-        const Eigen::Matrix4d cross = move * old.tangent_pose_covariance * by_pose.transpose();
-        covariance += by_pose * pose_covariance * by_pose.transpose() + cross + cross.transpose();
-      }
+      const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
       refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
       if (refiner_->Refined(index)) TakeRefinedLine(index, basis);
     }
@@ -417,7 +401,6 @@ void LineTransferModel::TakeRefinedLine(int index, const Eigen::Matrix<double, 6
   line.line = refiner_->Line(index);
   line.line_d_tangent = tangent_basis;
   line.tangent_covariance = refiner_->Covariance(index);
-  line.tangent_pose_covariance = refiner_->NewestPoseCrossCovariance(index);
   line.refined = true;
 }
 

@@ -134,9 +134,6 @@ class LineTransferModel final : public FeatureModel {
     bool refined = false;
     Eigen::Matrix<double, 6, 4> line_d_tangent;
     Eigen::Matrix4d tangent_covariance;
-    // Its covariance with the pose of the refinement's newest keyframe (4x6, that pose's
-    // left perturbation): what moves it into a new reference's frame (carry_pose_covariance).
-    Eigen::Matrix<double, 4, 6> tangent_pose_covariance;
   };
   struct Match {
     std::int64_t id;

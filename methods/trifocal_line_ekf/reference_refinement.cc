@@ -45,8 +45,6 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
           .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
           .Field("carry_over", &O::carry_over,
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
-          .Field("carry_pose_covariance", &O::carry_pose_covariance,
-                 "carried lines: covariance with the uncertainty of the pose that carries them and their correlation with it")
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)")
           .Field("triangulated_max_sigma_m", &O::triangulated_max_sigma_m, AtLeast(0.0),
@@ -89,7 +87,6 @@ void ReferenceRefiner::StartReference(int lines) {
   lines_.resize(lines);
   keyframes_.clear();
   frames_since_keyframe_ = 0;
-  newest_pose_covariance_valid_ = false;
 }
 
 void ReferenceRefiner::SetLine(int index, const PlueckerLine& line, bool usable, const Segment2d& left,
@@ -337,20 +334,6 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       const auto x = a_inverse_b.middleRows<4>(l);
       lines_[i].covariance = a_inverse[i] + x * schur_inverse * x.transpose();
       lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
-    }
-    // The newest keyframe's block of the inverse, and the lines' blocks with it: the
-    // off-diagonal block of the inverse is -A^-1 B S^-1.
-    const int newest = offset_of_pose(pose_of(keyframes_.size() - 1));
-    newest_pose_covariance_valid_ = newest >= 0;
-    if (newest_pose_covariance_valid_) {
-      newest_pose_covariance_ = schur_inverse.block<6, 6>(newest, newest);
-      for (size_t i = 0; i < lines_.size(); ++i) {
-        const int l = line_offset[i];
-        lines_[i].pose_cross_covariance.setZero();
-        if (l >= 0 && ok[i]) {
-          lines_[i].pose_cross_covariance.noalias() = -a_inverse_b.middleRows<4>(l) * schur_inverse.middleCols<6>(newest);
-        }
-      }
     }
   }
   if (poses_determined) RefineTriangulatedLines(pose_of, offset_of_pose, schur_inverse, problem, &used);

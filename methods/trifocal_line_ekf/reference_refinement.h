@@ -52,7 +52,6 @@
 #include "dataset/stereo_sequence.h"
 #include "geometry/line2d.h"
 #include "geometry/plucker.h"
-#include "geometry/se3.h"
 #include "optim/line_sfm_manifolds.h"
 #include "optim/taylor_segment_cost.h"
 
@@ -91,12 +90,6 @@ struct ReferenceRefinementOptions {
   // into its frame with the current pose and kept as priors (SetCarriedLine), instead of their
   // stereo triangulation from the new pair alone.
   bool carry_over = true;
-  // The carried lines' covariance includes the uncertainty of the pose that moves them into the
-  // new reference's frame (the newest keyframe's marginal covariance) and their correlation with
-  // it (both blocks of the last solve's inverse information), instead of the lines' own
-  // covariance alone, as if that pose were exact. Off: on the room loop it did not pay
-  // (docs/long_sequences.md).
-  bool carry_pose_covariance = false;
 
   void Check(const std::string& where = "reference refinement options", const std::string& path = "") const;
 };
@@ -147,12 +140,6 @@ class ReferenceRefiner {
   // with respect to it.
   const Eigen::Matrix4d& Covariance(int index) const { return lines_[index].covariance; }
   Eigen::Matrix<double, 6, 4> TangentBasis(int index) const;
-  // From the last solve (when its poses were determined): the newest keyframe's pose covariance
-  // (6x6, PoseManifold tangent: left perturbation of cam_from_ref) and each line's tangent
-  // cross-covariance with it (4x6; zero for a line not in the solve).
-  bool HasNewestPoseCovariance() const { return newest_pose_covariance_valid_; }
-  const Matrix6d& NewestPoseCovariance() const { return newest_pose_covariance_; }
-  const Eigen::Matrix<double, 4, 6>& NewestPoseCrossCovariance(int index) const { return lines_[index].pose_cross_covariance; }
 
   int solves() const { return solves_; }
 
@@ -168,7 +155,6 @@ class ReferenceRefiner {
     Segment2d left, right;  // in the reference pair
     Eigen::Vector3d left_line;
     Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
-    Eigen::Matrix<double, 4, 6> pose_cross_covariance = Eigen::Matrix<double, 4, 6>::Zero();
     int observations = 0;  // per solve: keyframe segments
     std::unique_ptr<ceres::CostFunction> prior_cost;  // carried over: its prior residual (else null)
     Eigen::Matrix4d prior_sqrt_information;
@@ -199,8 +185,6 @@ class ReferenceRefiner {
   std::vector<LineState> lines_;
   std::deque<Keyframe> keyframes_;
   int frames_since_keyframe_ = 0;
-  Matrix6d newest_pose_covariance_ = Matrix6d::Zero();
-  bool newest_pose_covariance_valid_ = false;
   int solves_ = 0;
   std::deque<TaylorSegmentCost> costs_;  // reused from solve to solve (addresses kept)
   struct ResidualRef {
