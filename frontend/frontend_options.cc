@@ -24,6 +24,7 @@ const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
           .Field("merge_angle_deg", &D::merge_angle_deg, InRange(0.0, 45.0), "collinear merge: largest angle, deg")
           .Field("merge_distance_px", &D::merge_distance_px, AtLeast(0.0), "collinear merge: largest endpoint distance to the other line, px")
           .Field("merge_gap_px", &D::merge_gap_px, AtLeast(0.0), "collinear merge: largest gap along the line, px")
+          .Field("merge_same_polarity", &D::merge_same_polarity, "collinear merge: only fragments with the same brighter side")
           .Field("min_contrast", &D::min_contrast, AtLeast(0.0), "smallest grey-level difference between the two sides");
   return schema;
 }

@@ -50,6 +50,10 @@ struct DetectionOptions {
   double merge_angle_deg = 2.0;
   double merge_distance_px = 1.5;
   double merge_gap_px = 6.0;
+  // Merge only fragments with the same brighter side (each oriented by its gradient first): a
+  // merge across a change of polarity makes a segment whose contrast averages out and which
+  // the contrast filter and the snap then drop (docs/frontend.md, the audit of the misses).
+  bool merge_same_polarity = true;
   // Mean grey-level difference between the two sides of a segment (sampled 2 px off it) below
   // which it is dropped: without a brighter side it has no orientation to match by.
   double min_contrast = 8.0;
