@@ -38,6 +38,15 @@ struct DetectionOptions {
   double lsd_scale = 0.6;
   // LSD's refinement (OpenCV's LSD_REFINE_STD: arcs split into straight pieces) or none.
   bool lsd_refine = true;
+  // LSD's other parameters (von Gioi et al. 2010; OpenCV's names and defaults): the Gaussian
+  // filter's sigma is lsd_sigma_scale / lsd_scale; a pixel joins a line-support region when its
+  // level-line angle is within lsd_angle_deg of the region's; a region is a segment when
+  // -log10(NFA) > lsd_log_eps; regions whose rectangle holds under lsd_density of aligned
+  // pixels are cut down.
+  double lsd_sigma_scale = 0.6;
+  double lsd_angle_deg = 22.5;
+  double lsd_log_eps = 0.0;
+  double lsd_density = 0.7;
   // Move each detected segment onto the image's edge by the tracker's edge snap
   // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not
   // when the snap is off (tracking.snap_radius_px 0).

@@ -19,12 +19,12 @@ Segment2d ToSegment(const cv::Vec4f& v) { return Segment2d(v[0], v[1], v[2], v[3
 
 class LsdDetector : public LineDetector {
  public:
-  // OpenCV's sigma_scale 0.6 and ang_th 22.5 deg; the working scale, the refinement and the
-  // gradient quantisation bound `quant` (which sets the smallest gradient magnitude LSD
-  // considers) from DetectionOptions (lsd_scale, lsd_refine, lsd_quant).
+  // Every parameter from DetectionOptions (lsd_*; the gradient quantisation bound `quant` sets
+  // the smallest gradient magnitude LSD considers); OpenCV's 1024 bins of its pseudo-ordering.
   explicit LsdDetector(const DetectionOptions& options)
       : lsd_(cv::createLineSegmentDetector(options.lsd_refine ? cv::LSD_REFINE_STD : cv::LSD_REFINE_NONE,
-                                           options.lsd_scale, 0.6, options.lsd_quant)) {}
+                                           options.lsd_scale, options.lsd_sigma_scale, options.lsd_quant,
+                                           options.lsd_angle_deg, options.lsd_log_eps, options.lsd_density)) {}
   void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) override {
     lines_.clear();
     lsd_->detect(grey, lines_);

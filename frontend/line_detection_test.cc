@@ -71,5 +71,31 @@ TEST(DetectLines, KeepsAnEdgeWhosePolarityChangesAsTwoSegments) {
   EXPECT_TRUE(on_edge(DetectLines(*detector, options, image)).empty());
 }
 
+// LSD's parameters come from the options (a config's detection.lsd_*, validated by key).
+TEST(MakeLineDetector, LsdTakesItsParametersFromTheOptions) {
+  // A bar 3 px wide, brighter than its surroundings: two edges of opposite polarity.
+  cv::Mat image(120, 240, CV_8UC1, cv::Scalar(90));
+  image(cv::Rect(20, 58, 200, 3)).setTo(150);
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 0.5);
+  const auto long_segments = [&](const DetectionOptions& options) {
+    std::vector<Segment2d> segments;
+    MakeLineDetector(options)->Detect(image, &segments);
+    int n = 0;
+    for (const Segment2d& s : segments) n += (s.tail<2>() - s.head<2>()).norm() > 100.0;
+    return n;
+  };
+  DetectionOptions options;
+  options.lsd_sigma_scale = 0.4;
+  EXPECT_EQ(long_segments(options), 2);
+  options.lsd_sigma_scale = 3.0;  // a blur of 5 px merges the bar's edges
+  EXPECT_NE(long_segments(options), 2);
+  try {
+    FrontEndOptionsFromJson({{"detection", {{"lsd_density", 2.0}}}}, "f.json");
+    ADD_FAILURE() << "lsd_density 2 accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("detection.lsd_density"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace slt
