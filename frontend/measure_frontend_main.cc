@@ -17,7 +17,9 @@
 //    fraction of the visible ground-truth segments at least 40 px long that a detection lies on
 //    (within 2 px and 2 deg, frontend_audit.h), precision = the fraction of detections that lie
 //    on some ground-truth segment, the RMS perpendicular endpoint error of those, and the
-//    single-thread time per image.
+//    single-thread time per image; and the recall of those ground-truth segments that are
+//    photometrically visible (frontend_audit.h: the step across them in the same image rendered
+//    without sensor noise at least the noise of a two-pixel difference).
 // 2. sequences.md: the front end paired with the tracker over each whole sequence: stereo
 //    matches and temporal tracks correct (same 3-D segment; frontend_audit.h; within 2 px and
 //    2 deg, and for identity alone within 3 px and 5 deg), endpoint error of
@@ -82,24 +84,34 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
   const DetectionOptions& base = front_end_options.detection;
   std::string table =
       "| scene | detector | images | GT segments >= 40 px | recall | precision | endpoint RMS, px | segments per image "
-      "| ms per image |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+      "| ms per image | of those, photometrically visible | recall of those |\n"
+      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const MeasuredScene& scene : scenes) {
     const SimulationConfig& config = scene.config;
     const SimulatedSequence& sequence = scene.sequence;
     const SequenceRenderer renderer(sequence, config);
+    // The same images without sensor noise, for the photometric visibility of the ground truth.
+    SimulationConfig noise_free = config;
+    noise_free.images.read_noise = 0.0;
+    noise_free.images.shot_noise = 0.0;
+    const SequenceRenderer noise_free_renderer(sequence, noise_free);
     std::vector<cv::Mat> images;
     std::vector<std::pair<int, int>> which;
+    std::vector<std::vector<LineObservation>> photometric;
     for (int k = 0; k < config.frames; k += step) {
       for (int c = 0; c < 2; ++c) {
         images.push_back(renderer.Image(k, c));
         which.emplace_back(k, c);
+        const StereoFrame& frame = sequence.sequence.frames[k];
+        photometric.push_back(PhotometricallyVisible(c == 0 ? frame.left : frame.right, noise_free_renderer.Image(k, c),
+                                                     config.images));
       }
     }
     for (const auto& [type, name] : LineDetectorNames()) {
       DetectionOptions options = base;  // --config's detection options, each detector in turn
       options.detector = type;
       const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
-      DetectionScore score;
+      DetectionScore score, photometric_score;
       const TrackingOptions tracking = front_end_options.tracking;
       const LineFlowTracker flow(tracking);
       ImagePyramid pyramid;
@@ -118,11 +130,14 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
         score.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
         const auto [k, c] = which[i];
         const StereoFrame& frame = sequence.sequence.frames[k];
-        ScoreDetections(ProjectedGroundTruthAt(sequence, k, c), c == 0 ? frame.left : frame.right, lines, 40.0, &score);
+        const ProjectedGroundTruth projected = ProjectedGroundTruthAt(sequence, k, c);
+        ScoreDetections(projected, c == 0 ? frame.left : frame.right, lines, 40.0, &score);
+        ScoreDetections(projected, photometric[i], lines, 40.0, &photometric_score);
       }
-      table += Format("| %s | %s | %d | %d | %.3f | %.3f | %.2f | %.0f | %.1f |\n", scene.name.c_str(), name,
+      table += Format("| %s | %s | %d | %d | %.3f | %.3f | %.2f | %.0f | %.1f | %d | %.3f |\n", scene.name.c_str(), name,
                       score.images, score.gt_segments, score.Recall(), score.Precision(), score.EndpointRms(),
-                      static_cast<double>(score.detections) / score.images, 1e3 * score.seconds / score.images);
+                      static_cast<double>(score.detections) / score.images, 1e3 * score.seconds / score.images,
+                      photometric_score.gt_segments, photometric_score.Recall());
       std::fprintf(stderr, "measure_frontend: %s, %s: recall %.3f\n", scene.name.c_str(), name, score.Recall());
     }
   }
