@@ -1,10 +1,13 @@
-// The command-line step every program shares (CLI11): parse, then the program's own checks of
-// its options. --help prints the help on stdout and exits 0; a command-line error prints one
-// line "<program>: error: <what> (see --help)" on stderr and exits 2.
+// The command-line steps every program shares (CLI11): parse, then the program's own checks of
+// its options (--help prints the help on stdout and exits 0; a command-line error prints one line
+// "<program>: error: <what> (see --help)" on stderr and exits 2); the options several programs
+// take, declared once; and the run of the program's work with its errors reported.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
+#include <string>
 
 namespace slt {
 
@@ -27,6 +30,39 @@ int ParseCommandLine(CLI::App& app, int argc, char** argv, const char* program, 
 
 inline int ParseCommandLine(CLI::App& app, int argc, char** argv, const char* program) {
   return ParseCommandLine(app, argc, argv, program, [] {});
+}
+
+// The program's work after parsing: `body` returns the exit code. An error it throws prints one
+// line "<program>: error: <what>" on stderr and exits 2 for a command-line error found late
+// (CLI::Error, e.g. a missing option), 1 for any other.
+template <typename Body>
+int RunProgram(const char* program, const Body& body) {
+  try {
+    return body();
+  } catch (const CLI::Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return 1;
+  }
+}
+
+// --method,-m: a registered tracker (methods/pose_tracker.h), and its options file under
+// `config_flag` (JSON; missing keys keep their defaults). Returns the --method option.
+inline CLI::Option* AddTrackerOptions(CLI::App& app, std::string* method, std::string* config_path,
+                                      const char* config_flag) {
+  app.add_option(config_flag, *config_path, "Tracker options, JSON (missing keys keep their defaults)");
+  return app.add_option("--method,-m", *method, "Tracker name (track --list)");
+}
+
+// The measurement tools on rendered sequences: --frames per sequence (at least `min_frames`),
+// every --step-th frame measured, --out where the tables go.
+inline void AddMeasurementOptions(CLI::App& app, int* frames, int min_frames, int* step, std::string* out,
+                                  const char* out_help) {
+  app.add_option("--frames", *frames, "Frames per sequence")->check(CLI::Range(min_frames, 100000));
+  app.add_option("--step", *step, "Measure every step-th frame")->check(CLI::Range(1, 100000));
+  app.add_option("--out", *out, out_help);
 }
 
 }  // namespace slt

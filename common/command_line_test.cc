@@ -35,5 +35,14 @@ TEST(ParseCommandLine, GoesOnStopsWithHelpOrFailsWithTwo) {
   EXPECT_NE(errors.find("must not be 3 (see --help)"), std::string::npos);
 }
 
+TEST(RunProgram, ExitsWithTheBodysCodeOrOneLineOfError) {
+  EXPECT_EQ(RunProgram("program", [] { return 3; }), 3);
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(RunProgram("program", []() -> int { throw CLI::RequiredError("--input"); }), 2);
+  EXPECT_EQ(RunProgram("program", []() -> int { throw std::runtime_error("x.json: cannot open file"); }), 1);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "program: error: --input is required\nprogram: error: x.json: cannot open file\n");
+}
+
 }  // namespace
 }  // namespace slt

@@ -1,6 +1,8 @@
 #include "common/table.h"
 
 #include <algorithm>
+#include <cstdarg>
+#include <cstdio>
 #include <stdexcept>
 
 #include "common/csv.h"
@@ -32,6 +34,15 @@ std::string Join(const std::vector<std::string>& cells, std::string (*escape)(co
 }
 
 }  // namespace
+
+std::string StringPrintf(const char* format, ...) {
+  char buffer[1024];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  return buffer;
+}
 
 void Table::AddRow(std::vector<std::string> cells, bool rule_before) {
   if (cells.size() != columns.size()) {

@@ -18,6 +18,9 @@
 
 namespace slt {
 
+// printf-style text of a cell ("%.3f"); at most 1023 characters.
+std::string StringPrintf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
 struct Table {
   enum class Align { kLeft, kRight };
   struct Column {

@@ -17,6 +17,11 @@ Table GroupedTable() {
   return t;
 }
 
+TEST(StringPrintf, FormatsLikePrintf) {
+  EXPECT_EQ(StringPrintf("%s %.3f %d", "a", 0.12345, 7), "a 0.123 7");
+  EXPECT_EQ(StringPrintf("%.4g", 12345.0), "1.234e+04");
+}
+
 TEST(Table, MarkdownPrefixesGroupTitlesAndEscapesPipes) {
   EXPECT_EQ(GroupedTable().Markdown(),
             "| Method | noise_px | Rot \\| err_deg mean | 95 % interval |\n"

@@ -197,30 +197,20 @@ TEST(StereoLinesIo, ReadsHandWrittenFile) {
   EXPECT_EQ(s.frames[1].time, 0.05);
   EXPECT_EQ(s.frames[2].time, 0.05);
 
-  const std::vector<LineObservation>& left0 = s.frames[0].left;
-  ASSERT_EQ(left0.size(), 3u);
-  EXPECT_EQ(left0[0].id, 3);
-  EXPECT_EQ(left0[0].segment, Segment2d(110, 50, 150, 52.75));
-  EXPECT_EQ(left0[1].id, 17);
-  EXPECT_EQ(left0[1].segment, Segment2d(320.5, 200, 330, 260));
-  EXPECT_EQ(left0[2].id, -2);  // left image only
-  EXPECT_EQ(left0[2].segment, Segment2d(5, 6, 7, 8));
-  const std::vector<LineObservation>& right0 = s.frames[0].right;
-  ASSERT_EQ(right0.size(), 2u);
-  EXPECT_EQ(right0[0].id, 17);
-  EXPECT_EQ(right0[0].segment, Segment2d(300, 200.5, 310, 260));
-  EXPECT_EQ(right0[1].id, 3);
-  EXPECT_EQ(right0[1].segment, Segment2d(100.25, 50, 140, 52));
-
+  // Id and segment of each observation, in the file's order.
+  using Observed = std::vector<std::pair<std::int64_t, std::vector<double>>>;
+  const auto observed = [](const std::vector<LineObservation>& observations) {
+    Observed out;
+    for (const LineObservation& o : observations) out.push_back({o.id, {o.segment.data(), o.segment.data() + 4}});
+    return out;
+  };
+  EXPECT_EQ(observed(s.frames[0].left),
+            (Observed{{3, {110, 50, 150, 52.75}}, {17, {320.5, 200, 330, 260}}, {-2, {5, 6, 7, 8}}}));  // -2: left only
+  EXPECT_EQ(observed(s.frames[0].right), (Observed{{17, {300, 200.5, 310, 260}}, {3, {100.25, 50, 140, 52}}}));
   EXPECT_TRUE(s.frames[1].left.empty());
   EXPECT_TRUE(s.frames[1].right.empty());
-
-  ASSERT_EQ(s.frames[2].left.size(), 1u);
-  EXPECT_EQ(s.frames[2].left[0].id, 1000000000000);
-  EXPECT_EQ(s.frames[2].left[0].segment, Segment2d(1, 2, 3, 4.5));
-  ASSERT_EQ(s.frames[2].right.size(), 1u);
-  EXPECT_EQ(s.frames[2].right[0].id, 42);
-  EXPECT_EQ(s.frames[2].right[0].segment, Segment2d(600, 470, 630, 10));
+  EXPECT_EQ(observed(s.frames[2].left), (Observed{{1000000000000, {1, 2, 3, 4.5}}}));
+  EXPECT_EQ(observed(s.frames[2].right), (Observed{{42, {600, 470, 630, 10}}}));
 }
 
 TEST(StereoLinesIo, AcceptsIntegralFloatIds) {
@@ -253,21 +243,25 @@ class MalformedStereoLines : public ::testing::Test {
     EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << "error does not start with the file: " << error;
     return error.substr(path.size() + 2);
   }
+  // Sets the value at `pointer` ("/rig/width"; the change stays), then ReadError().
+  std::string ErrorWith(const std::string& pointer, const nlohmann::json& value) {
+    document_[nlohmann::json::json_pointer(pointer)] = value;
+    return ReadError();
+  }
   nlohmann::json document_;
 };
 
 TEST_F(MalformedStereoLines, ValidDocumentReads) { EXPECT_EQ(ReadError(), ""); }
 
 TEST_F(MalformedStereoLines, BadFormatString) {
-  document_["format"] = "stereo-lines/2";
-  EXPECT_EQ(ReadError(), "key 'format': expected \"stereo-lines/1\", got \"stereo-lines/2\"");
+  EXPECT_EQ(ErrorWith("/format", "stereo-lines/2"),
+            "key 'format': expected \"stereo-lines/1\", got \"stereo-lines/2\"");
   document_.erase("format");
   EXPECT_EQ(ReadError(), "key 'format': missing");
 }
 
 TEST_F(MalformedStereoLines, UnknownKey) {
-  document_["rig"]["rigth"] = 1;
-  EXPECT_EQ(ReadError(), "key 'rig.rigth': unknown key");
+  EXPECT_EQ(ErrorWith("/rig/rigth", 1), "key 'rig.rigth': unknown key");
 }
 
 TEST_F(MalformedStereoLines, MissingRigKeys) {
@@ -282,70 +276,60 @@ TEST_F(MalformedStereoLines, MissingRigKeys) {
 }
 
 TEST_F(MalformedStereoLines, BadRigValues) {
-  document_["rig"]["width"] = 640.5;
-  EXPECT_EQ(ReadError(), "key 'rig.width': expected an integer, got 640.5");
-  document_["rig"]["width"] = 0;
-  EXPECT_EQ(ReadError(), "key 'rig.width': must be a positive integer");
+  EXPECT_EQ(ErrorWith("/rig/width", 640.5), "key 'rig.width': expected an integer, got 640.5");
+  EXPECT_EQ(ErrorWith("/rig/width", 0), "key 'rig.width': must be a positive integer");
   document_["rig"]["width"] = 640;
-  document_["rig"]["right"]["fx"] = "848";
-  EXPECT_EQ(ReadError(), "key 'rig.right.fx': expected a number, got \"848\"");
-  document_["rig"]["right"]["fx"] = -848;
-  EXPECT_EQ(ReadError(), "key 'rig.right': focal lengths fx, fy must be positive");
+  EXPECT_EQ(ErrorWith("/rig/right/fx", "848"), "key 'rig.right.fx': expected a number, got \"848\"");
+  EXPECT_EQ(ErrorWith("/rig/right/fx", -848), "key 'rig.right': focal lengths fx, fy must be positive");
 }
 
 TEST_F(MalformedStereoLines, NonRotationR) {
-  document_["rig"]["right_from_left"]["R"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1.01}};
-  EXPECT_EQ(ReadError(), "key 'rig.right_from_left.R': not a rotation matrix");
-  document_["rig"]["right_from_left"]["R"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}};
-  EXPECT_EQ(ReadError(), "key 'rig.right_from_left.R': not a rotation matrix");
-  document_["rig"]["right_from_left"]["R"] = {{1, 0, 0}, {0, 1, 0}};
-  EXPECT_EQ(ReadError(), "key 'rig.right_from_left.R': expected 3 rows of 3 numbers, got [[1,0,0],[0,1,0]]");
-  document_["rig"]["right_from_left"]["R"] = {{1, 0, 0}, {0, 1, 0}, {0, 0}};
-  EXPECT_EQ(ReadError(), "key 'rig.right_from_left.R[2]': expected an array of 3 numbers, got [0,0]");
+  EXPECT_EQ(ErrorWith("/rig/right_from_left/R", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1.01}}),
+            "key 'rig.right_from_left.R': not a rotation matrix");
+  EXPECT_EQ(ErrorWith("/rig/right_from_left/R", {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}}),
+            "key 'rig.right_from_left.R': not a rotation matrix");
+  EXPECT_EQ(ErrorWith("/rig/right_from_left/R", {{1, 0, 0}, {0, 1, 0}}),
+            "key 'rig.right_from_left.R': expected 3 rows of 3 numbers, got [[1,0,0],[0,1,0]]");
+  EXPECT_EQ(ErrorWith("/rig/right_from_left/R", {{1, 0, 0}, {0, 1, 0}, {0, 0}}),
+            "key 'rig.right_from_left.R[2]': expected an array of 3 numbers, got [0,0]");
   document_["rig"]["right_from_left"]["R"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  document_["rig"]["right_from_left"]["t"] = {0, 0, 0};
-  EXPECT_EQ(ReadError(), "key 'rig.right_from_left.t': baseline must be non-zero");
+  EXPECT_EQ(ErrorWith("/rig/right_from_left/t", {0, 0, 0}), "key 'rig.right_from_left.t': baseline must be non-zero");
 }
 
 TEST_F(MalformedStereoLines, WrongObservationArity) {
-  document_["frames"][3]["left"][7] = {1, 2, 3, 4};
-  EXPECT_EQ(ReadError(), "key 'frames[3].left[7]': expected [id, u1, v1, u2, v2], got [1,2,3,4]");
-  document_["frames"][3]["left"][7] = {1, 2, 3, 4, 5, 6};
-  EXPECT_EQ(ReadError(), "key 'frames[3].left[7]': expected [id, u1, v1, u2, v2], got [1,2,3,4,5,6]");
-  document_["frames"][3]["left"][7] = 5;
-  EXPECT_EQ(ReadError(), "key 'frames[3].left[7]': expected [id, u1, v1, u2, v2], got 5");
+  EXPECT_EQ(ErrorWith("/frames/3/left/7", {1, 2, 3, 4}),
+            "key 'frames[3].left[7]': expected [id, u1, v1, u2, v2], got [1,2,3,4]");
+  EXPECT_EQ(ErrorWith("/frames/3/left/7", {1, 2, 3, 4, 5, 6}),
+            "key 'frames[3].left[7]': expected [id, u1, v1, u2, v2], got [1,2,3,4,5,6]");
+  EXPECT_EQ(ErrorWith("/frames/3/left/7", 5), "key 'frames[3].left[7]': expected [id, u1, v1, u2, v2], got 5");
 }
 
 TEST_F(MalformedStereoLines, BadObservationValues) {
-  document_["frames"][2]["right"][1] = {1.5, 2, 3, 4, 5};
-  EXPECT_EQ(ReadError(), "key 'frames[2].right[1]': id: expected an integer, got 1.5");
-  document_["frames"][2]["right"][1] = {1, 2, nullptr, 4, 5};
-  EXPECT_EQ(ReadError(), "key 'frames[2].right[1]': v1: expected a number, got null");
-  document_["frames"][2]["right"][1] = {1, 2, 3, 2, 3};
-  EXPECT_EQ(ReadError(), "key 'frames[2].right[1]': segment has zero length");
+  EXPECT_EQ(ErrorWith("/frames/2/right/1", {1.5, 2, 3, 4, 5}),
+            "key 'frames[2].right[1]': id: expected an integer, got 1.5");
+  EXPECT_EQ(ErrorWith("/frames/2/right/1", {1, 2, nullptr, 4, 5}),
+            "key 'frames[2].right[1]': v1: expected a number, got null");
+  EXPECT_EQ(ErrorWith("/frames/2/right/1", {1, 2, 3, 2, 3}), "key 'frames[2].right[1]': segment has zero length");
 }
 
 TEST_F(MalformedStereoLines, DuplicateIdInOneImage) {
-  document_["frames"][1]["left"][4][0] = document_["frames"][1]["left"][2][0];
-  EXPECT_EQ(ReadError(), "key 'frames[1].left[4]': duplicate id " + document_["frames"][1]["left"][2][0].dump() +
+  EXPECT_EQ(ErrorWith("/frames/1/left/4/0", document_["frames"][1]["left"][2][0]),
+            "key 'frames[1].left[4]': duplicate id " + document_["frames"][1]["left"][2][0].dump() +
                              " (also at frames[1].left[2])");
 }
 
 TEST_F(MalformedStereoLines, BadFrames) {
-  document_["frames"][2]["time"] = 0.05;
-  EXPECT_EQ(ReadError(), "key 'frames[2].time': 0.05 is before the previous frame's time 0.1");
+  EXPECT_EQ(ErrorWith("/frames/2/time", 0.05), "key 'frames[2].time': 0.05 is before the previous frame's time 0.1");
   document_["frames"][2]["time"] = 0.2;
   document_["frames"][2].erase("right");
   EXPECT_EQ(ReadError(), "key 'frames[2].right': missing");
-  document_["frames"][2]["right"] = nlohmann::json::object();
-  EXPECT_EQ(ReadError(), "key 'frames[2].right': expected an array of observations, got {}");
-  document_["frames"] = nlohmann::json::object();
-  EXPECT_EQ(ReadError(), "key 'frames': expected an array of frames, got {}");
+  EXPECT_EQ(ErrorWith("/frames/2/right", nlohmann::json::object()),
+            "key 'frames[2].right': expected an array of observations, got {}");
+  EXPECT_EQ(ErrorWith("/frames", nlohmann::json::object()), "key 'frames': expected an array of frames, got {}");
 }
 
 TEST_F(MalformedStereoLines, TopLevelKeys) {
-  document_["extra"] = 1;
-  EXPECT_EQ(ReadError(), "key 'extra': unknown key");
+  EXPECT_EQ(ErrorWith("/extra", 1), "key 'extra': unknown key");
   document_ = nlohmann::json::array();
   EXPECT_EQ(ReadError(), "top level: expected a JSON object, got array");
 }

@@ -52,15 +52,13 @@ MethodSpec ReadMethod(const nlohmann::json& j, const std::string& where, const s
   } else {
     ThrowOptionError(where, "", key, std::string("expected a tracker name or {\"name\": ..}, got ") + j.type_name());
   }
-  try {
-    FindTracker(method.name);
-  } catch (const std::invalid_argument& e) {
-    ThrowOptionError(where, "", key, e.what());
-  }
   if (method.label.empty()) method.label = method.name;
-  // Invalid tracker options fail here, naming the key, rather than in the middle of a run.
+  // An unknown tracker or invalid options fail here, naming the key, rather than in the middle
+  // of a run.
   try {
     CreateTracker(method.name, method.options, where);
+  } catch (const std::invalid_argument& e) {
+    ThrowOptionError(where, "", key, e.what());
   } catch (const ConfigError& e) {
     RethrowUnder(e, where, j.is_object() ? key + ".options" : key);
   }
@@ -454,12 +452,11 @@ std::vector<SweepPoint> ExpandSweep(const std::vector<SweepAxis>& axes) {
     std::vector<SweepPoint> next;
     for (const SweepPoint& p : points) {
       for (const nlohmann::json& v : axis.values) {
-        SweepPoint q = p;
-        q.values.push_back(v);
-        next.push_back(q);
+        next.push_back(p);
+        next.back().values.push_back(v);
       }
     }
-    points = next;
+    points.swap(next);
   }
   return points;
 }

@@ -1,8 +1,9 @@
 // The experiment config: which simulated sequences, which trackers, how many trials, which
 // sweep, which plots. docs/experiments.md lists every field.
 //
-// Every field has a default and is declared once, with its range and doc, in the config's option
-// schema (experiment_config.cc, common/options.h): reading, checking and writing derive from it.
+// Every field has a default and is declared once, with its range and one-line doc, in the
+// config's option schemas (experiment_config.cc, common/options.h): reading, checking and
+// writing derive from them; the comments here say only what the schemas' docs do not.
 // Errors are ConfigError "<file>: key '<dotted.key>': <reason>". ExperimentConfigToJson writes
 // every field with its default filled in, in a form that ExperimentConfigFromJson reads back to
 // the same config (config.resolved.json).
@@ -23,42 +24,40 @@ namespace slt {
 struct SweepAxis {
   std::string parameter;
   std::vector<nlohmann::json> values;
-  std::string label;  // axis label for plots and tables; defaults to the parameter
+  std::string label;
 };
 
 // One tracker of the experiment. Its id in every output is its label (unique in a config).
 struct MethodSpec {
-  std::string name;                                     // registered tracker name
-  std::string label;                                    // defaults to name
-  nlohmann::json options = nlohmann::json::object();   // passed to CreateTracker
+  std::string name;
+  std::string label;
+  nlohmann::json options = nlohmann::json::object();  // passed to CreateTracker
   const std::string& Id() const { return label; }
 };
 
 // A value the paper reports, drawn on a sweep plot beside the reproduction (Figs. 4, 5).
 struct ReportedValue {
-  double x = std::nan("");        // where on the swept parameter (required)
-  double rot_err_deg = -1.0;      // < 0: not reported
+  double x = std::nan("");  // required
+  double rot_err_deg = -1.0;
   double trans_err_m = -1.0;
-  bool upper_bound = true;        // the paper says "less than" this value
-  std::string label = "paper";    // legend text
+  bool upper_bound = true;
+  std::string label = "paper";
 };
 
 // One PNG drawn by scripts/plot_experiment.py from the CSV outputs.
 struct PlotSpec {
-  std::string kind;            // "sweep", "grid", "curves", "trajectory" or "methods"
-  std::string file;            // file name in the output directory, "*.png"
-  std::string title;           // figure title (defaults to the experiment's title)
-  std::string caption;         // a line of text under the figure (optional)
-  std::string yscale = "linear";  // "linear" or "log"
-  bool band = false;           // sweep, grid: shade the 95 % interval over trials
-  // sweep, grid, curves: the statistic over trials drawn as lines: "mean", "median" or "both"
-  // (median solid, mean dotted: one failed trial moves the mean, not the median).
+  std::string kind;
+  std::string file;
+  std::string title;
+  std::string caption;
+  std::string yscale = "linear";
+  bool band = false;
+  // Median solid, mean dotted for "both": one failed trial moves the mean, not the median.
   std::string statistic = "mean";
   // grid: "methods" = one panel per value of the second parameter, one line per method;
   // "sweep" = one panel per method, one line per value of the second parameter.
   std::string lines = "methods";
-  int trial = 0;               // trajectory: the trial drawn (must be saved)
-  // sweep: the paper's values, drawn as black triangles; methods: as dashed lines (x unused).
+  int trial = 0;  // must be saved
   std::vector<ReportedValue> paper;
 };
 
@@ -75,39 +74,36 @@ struct OrderingCheck {
 // A recorded stereo sequence (KITTI or EuRoC layout, frontend/image_sequence.h) run through the
 // image front end instead of a simulation (docs/datasets.md).
 struct DatasetSpec {
-  std::string path;          // the sequence folder, relative to the working directory
-  std::string label;         // its id in every output; defaults to the folder's name
-  std::string layout = "auto";  // auto, asl (= euroc) or kitti
-  int first_frame = 0;       // stereo pairs [first_frame, end_frame)
-  int end_frame = -1;        // -1 = to the end
-  std::string ground_truth;  // overrides the dataset's own ground truth file ("" = its own)
+  std::string path;
+  std::string label;
+  std::string layout = "auto";
+  int first_frame = 0;
+  int end_frame = -1;
+  std::string ground_truth;
 };
 
 struct ExperimentConfig {
-  std::string name = "experiment";  // output directory name: results/<name>
-  std::string title;                // defaults to name
+  std::string name = "experiment";
+  std::string title;
   int trials = 20;
-  std::uint64_t seed = 1;  // trial k simulates with seed TrialSeed(seed, k)
+  std::uint64_t seed = 1;
   // The base simulation JSON as given (SimulationConfigFromJson format, without "seed"). It is
   // kept as JSON, not resolved, because some simulation defaults depend on other fields
   // (scene.type) that a sweep may change.
   nlohmann::json simulation = nlohmann::json::object();
-  std::vector<SweepAxis> sweep;  // 0, 1 or 2 axes; 2 = every combination (a grid)
+  std::vector<SweepAxis> sweep;
   std::vector<MethodSpec> methods;
-  // Frame at which the accumulated error is read; -1 = the last frame of each sequence.
-  int metrics_frame = -1;
-  bool per_frame_curves = false;  // write per-frame error curves (Fig. 6)
-  int save_trajectories = 0;      // trials 0 .. n-1 of each (method, point) write TUM files
-  // Summary columns of summary.md / summary.tex (names from SummaryMetricNames()).
+  int metrics_frame = -1;  // -1 = the last frame of each sequence
+  bool per_frame_curves = false;
+  int save_trajectories = 0;
   std::vector<std::string> table_metrics = {"rot_err_deg", "trans_err_m", "time_us"};
-  std::vector<PlotSpec> plots;  // defaults follow the sweep and the curves/trajectory flags
-  // The paper's orderings, as pairs; summary.md then lists the full ordering at every point.
+  std::vector<PlotSpec> plots;
   std::vector<OrderingCheck> expect_better;
   // Recorded sequences instead of the simulation: then "simulation" and "sweep" must be absent,
   // trials is 1 (a recorded sequence has no random draws), and the sweep is one axis
   // "dataset" whose values are the datasets' labels, so that tables and plots group by dataset.
   std::vector<DatasetSpec> datasets;
-  nlohmann::json frontend = nlohmann::json::object();  // front-end options (docs/frontend.md)
+  nlohmann::json frontend = nlohmann::json::object();
 };
 
 // Reads a config. `where` names the file in errors. "methods": "all" (or absent) expands to

@@ -15,12 +15,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// True when `dir` holds nothing but other runs' shard outputs (raw/shards/), or nothing.
+bool HoldsOnlyShards(const fs::path& dir) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    if (entry.path().filename() != "raw" || !entry.is_directory()) return false;
+    for (const fs::directory_entry& sub : fs::directory_iterator(entry.path())) {
+      if (sub.path().filename() != "shards") return false;
+    }
+  }
+  return true;
+}
+
 // An out_dir that exists must be a directory: the swap would replace a file (a config given as
-// --out) with the results.
+// --out) with the results. And it must be an earlier run's output (its run.json) or hold nothing
+// but shards: the swap replaces it whole, and files a user put there would go with it.
 void CheckOutputDir(const std::string& out_dir) {
   std::error_code error;
-  if (fs::exists(out_dir, error) && !fs::is_directory(out_dir, error)) {
-    throw std::runtime_error("--out " + out_dir + ": exists and is not a directory");
+  if (!fs::exists(out_dir, error)) return;
+  if (!fs::is_directory(out_dir, error)) throw std::runtime_error("--out " + out_dir + ": exists and is not a directory");
+  if (!fs::exists(fs::path(out_dir) / "run.json", error) && !HoldsOnlyShards(out_dir)) {
+    throw std::runtime_error("--out " + out_dir +
+                             ": holds files no run_experiment wrote (it has no run.json) and the run replaces the "
+                             "directory whole; give a new or empty directory, or move those files out");
   }
 }
 
@@ -75,30 +91,6 @@ std::vector<TrialResult> CompletedJobs(const std::string& out_dir, const Experim
   return {};
 }
 
-// Rewrites the journal of finished jobs in the staging directory at most every few seconds (each
-// write is atomic, so an interruption leaves the previous one).
-class Journal {
- public:
-  Journal(std::string dir, const ExperimentConfig& config, std::vector<TrialResult> completed)
-      : dir_(std::move(dir)), config_(config), trials_(std::move(completed)) {
-    // The reused jobs at once: an interruption before the first rewrite must not lose them.
-    if (!trials_.empty()) WriteRawResults(dir_, config_, trials_);
-  }
-  void Add(const TrialResult& trial) {
-    trials_.push_back(trial);
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_write_ < std::chrono::seconds(5)) return;
-    WriteRawResults(dir_, config_, trials_);
-    last_write_ = now;
-  }
-
- private:
-  std::string dir_;
-  const ExperimentConfig& config_;
-  std::vector<TrialResult> trials_;
-  std::chrono::steady_clock::time_point last_write_ = std::chrono::steady_clock::now();
-};
-
 }  // namespace
 
 ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& options) {
@@ -113,8 +105,17 @@ ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& o
   fs::remove_all(staging, error);
   CreateDirectories(staging);
   WriteJsonFile(JoinPath(staging, "config.resolved.json"), resolved);
-  Journal journal(staging, config, run_options.completed);
-  run_options.on_trial = [&journal](const TrialResult& trial) { journal.Add(trial); };
+  // The journal of finished jobs, rewritten at most every few seconds (each write is atomic, so
+  // an interruption leaves the previous one); the reused jobs at once.
+  std::vector<TrialResult> journal = run_options.completed;
+  if (!journal.empty()) WriteRawResults(staging, config, journal);
+  auto last_write = std::chrono::steady_clock::now();
+  run_options.on_trial = [&](const TrialResult& trial) {
+    journal.push_back(trial);
+    if (std::chrono::steady_clock::now() - last_write < std::chrono::seconds(5)) return;
+    WriteRawResults(staging, config, journal);
+    last_write = std::chrono::steady_clock::now();
+  };
   ExperimentRun run = RunExperiment(config, run_options);
   const Shard& shard = options.run.shard;
   WriteOutputs(staging, options, config, run.trials, resolved,
@@ -173,19 +174,18 @@ std::string DefaultOutputDir(const std::string& name) {
 }
 
 std::string FindConfigFile(const std::string& name) {
-  std::vector<std::string> candidates = {name};
   const bool has_suffix = name.size() > 5 && name.substr(name.size() - 5) == ".json";
-  if (!has_suffix) candidates.push_back(name + ".json");
-  for (const std::string& base : {std::string("experiments/configs"), JoinPath(SourceDir(), "experiments/configs")}) {
-    candidates.push_back(JoinPath(base, name));
-    if (!has_suffix) candidates.push_back(JoinPath(base, name + ".json"));
-  }
-  std::error_code error;
-  for (const std::string& c : candidates) {
-    if (fs::is_regular_file(c, error)) return c;
-  }
   std::string looked, available;
-  for (const std::string& c : candidates) looked += (looked.empty() ? "" : ", ") + c;
+  const std::string configs = "experiments/configs";
+  for (const std::string& base : {std::string(), configs, JoinPath(SourceDir(), configs)}) {
+    for (const std::string& file : {name, name + ".json"}) {
+      if (has_suffix && file != name) continue;
+      const std::string path = base.empty() ? file : JoinPath(base, file);
+      std::error_code error;
+      if (fs::is_regular_file(path, error)) return path;
+      looked += (looked.empty() ? "" : ", ") + path;
+    }
+  }
   for (const std::string& c : AvailableConfigs()) available += (available.empty() ? "" : ", ") + c;
   throw std::runtime_error("config '" + name + "' not found (looked for " + looked + "); available: " +
                            (available.empty() ? "none found" : available));

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -28,9 +27,6 @@ constexpr MetricInfo kMetrics[kNumTrialMetrics] = {
 #undef SLT_METRIC_INFO
 };
 
-// Display name of a metric with its unit, e.g. "Rotation error (deg)".
-std::string MetricTitle(int metric) { return kMetrics[metric].title; }
-
 const char* kStatSuffixes[4] = {"_mean", "_median", "_p2_5", "_p97_5"};
 
 // The cells that name a row of a CSV file: method id, point index, the point's sweep values.
@@ -41,41 +37,44 @@ std::vector<std::string> RowPrefix(const ExperimentConfig& config, const std::ve
   return row;
 }
 
-// A CSV file's table: the columns of RowPrefix, then `columns`.
+// A CSV file's table: the columns of RowPrefix (the sweep parameters by their dotted keys), then
+// `columns`.
 Table CsvFileTable(const ExperimentConfig& config, const std::vector<std::string>& columns) {
   Table table;
   for (const char* c : {"method", "point"}) table.columns.emplace_back(c);
-  for (const std::string& c : SweepColumns(config)) table.columns.emplace_back(c);
+  for (const SweepAxis& a : config.sweep) table.columns.emplace_back(a.parameter);
   for (const std::string& c : columns) table.columns.emplace_back(c);
   return table;
 }
 
-// Method index from its id; throws naming the file and line.
-size_t MethodOfRow(const ExperimentConfig& config, const std::string& id, const std::string& where) {
-  const int m = MethodIndex(config, id);
-  if (m < 0) throw std::runtime_error(where + ": method '" + id + "' is not in the config");
-  return static_cast<size_t>(m);
-}
-
-size_t ParseIndex(const std::string& text, const std::string& where) {
+// A whole number >= 0 in an index column.
+size_t ParseIndex(const std::string& text) {
   const double v = ParseDouble(text);
-  if (!(v >= 0) || v != std::floor(v) || v > 1e15) throw std::runtime_error(where + ": expected an index, got '" + text + "'");
+  if (!(v >= 0) || v != std::floor(v) || v > 1e15) throw std::runtime_error("expected an index, got '" + text + "'");
   return static_cast<size_t>(v);
 }
 
-// The point index of a row; checks that the sweep columns agree with the config.
-size_t PointOfRow(const CsvTable& table, const std::vector<std::string>& row, const ExperimentConfig& config,
-                  const std::vector<SweepPoint>& points, const std::string& where) {
-  const size_t p = ParseIndex(row[table.Column("point")], where);
-  if (p >= points.size()) throw std::runtime_error(where + ": sweep point " + std::to_string(p) + " is not in the config");
+// The (method, point, trial) a row of a raw file names, checked with its sweep columns against
+// the config.
+TrialResult RowKey(const CsvTable& table, const std::vector<std::string>& row, const ExperimentConfig& config,
+                   const std::vector<SweepPoint>& points) {
+  TrialResult key;
+  const std::string& id = row[table.Column("method")];
+  const int method = MethodIndex(config, id);
+  if (method < 0) throw std::runtime_error("method '" + id + "' is not in the config");
+  key.method_index = static_cast<size_t>(method);
+  const size_t p = key.point_index = ParseIndex(row[table.Column("point")]);
+  if (p >= points.size()) throw std::runtime_error("sweep point " + std::to_string(p) + " is not in the config");
   for (size_t a = 0; a < config.sweep.size(); ++a) {
-    const std::string& column = config.sweep[a].parameter;
-    if (row[table.Column(column)] != FormatValue(points[p].values[a])) {
-      throw std::runtime_error(where + ": " + column + " = '" + row[table.Column(column)] +
-                               "' does not match sweep point " + std::to_string(p) + " of the config");
+    const std::string& value = row[table.Column(config.sweep[a].parameter)];
+    if (value != FormatValue(points[p].values[a])) {
+      throw std::runtime_error(config.sweep[a].parameter + " = '" + value + "' does not match sweep point " +
+                               std::to_string(p) + " of the config");
     }
   }
-  return p;
+  key.trial = static_cast<int>(ParseIndex(row[table.Column("trial")]));
+  if (key.trial >= config.trials) throw std::runtime_error("trial " + std::to_string(key.trial) + " is not in the config");
+  return key;
 }
 
 // The trials that pass `keep`, by (method, point) in that order, each group by trial.
@@ -92,15 +91,10 @@ std::map<std::pair<size_t, size_t>, std::vector<const TrialResult*>> GroupTrials
   return groups;
 }
 
+// Three significant digits, whole numbers from 1000 up.
 std::string Sig(double v) {
   if (!std::isfinite(v)) return std::isnan(v) ? "n/a" : (v > 0 ? "inf" : "-inf");
-  char buffer[64];
-  if (std::fabs(v) >= 1000.0) {
-    std::snprintf(buffer, sizeof(buffer), "%.0f", v);
-  } else {
-    std::snprintf(buffer, sizeof(buffer), "%.3g", v);
-  }
-  return buffer;
+  return std::fabs(v) >= 1000.0 ? StringPrintf("%.0f", v) : StringPrintf("%.3g", v);
 }
 
 std::vector<int> TableMetrics(const ExperimentConfig& config) {
@@ -122,7 +116,7 @@ Table SummaryTable(const ExperimentConfig& config, const std::vector<SummaryRow>
   for (const SweepAxis& a : config.sweep) table.columns.emplace_back(a.label);
   table.columns.emplace_back("Trials");
   for (int m : TableMetrics(config)) {
-    table.groups.push_back({MetricTitle(m), table.columns.size(), 3});
+    table.groups.push_back({kMetrics[m].title, table.columns.size(), 3});
     table.columns.emplace_back("mean");
     table.columns.emplace_back("median");
     table.columns.emplace_back("95 % interval", Table::Align::kRight, "95\\,\\% interval");
@@ -154,12 +148,6 @@ int TrialMetricFromName(const std::string& name) {
     if (name == kMetrics[m].name) return m;
   }
   return -1;
-}
-
-std::vector<std::string> SweepColumns(const ExperimentConfig& config) {
-  std::vector<std::string> columns;
-  for (const SweepAxis& a : config.sweep) columns.push_back(a.parameter);
-  return columns;
 }
 
 void WriteRawResults(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials) {
@@ -206,59 +194,50 @@ void WriteRawResults(const std::string& dir, const ExperimentConfig& config, con
 std::vector<TrialResult> ReadRawResults(const std::string& dir, const ExperimentConfig& config) {
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   std::vector<TrialResult> trials;
-  std::map<std::tuple<size_t, size_t, int>, size_t> by_key;
-  // Calls read(row, trial) for every row of `file` (if it exists), with errors naming the file
-  // and line; `trial` is the parsed (method, point, trial) of the row, and for the files other
-  // than trials.csv, the trial it belongs to.
+  std::map<size_t, size_t> by_job;  // job index -> index into trials
+  // Calls read(column, trial) for every row of `file` (if it exists), with errors naming the file
+  // and line: for trials.csv a new trial (method, point and trial set), for the others the trial
+  // the row belongs to.
   auto for_each_row = [&](const std::string& file, bool first, const auto& read) {
     const std::string path = JoinPath(dir, file);
     if (!first && !fs::exists(path)) return;
     const CsvTable table = ReadCsvFile(path);
     for (size_t r = 0; r < table.rows.size(); ++r) {
       const std::vector<std::string>& row = table.rows[r];
-      const std::string where = table.where + ":" + std::to_string(r + 2);
       try {
-        TrialResult key;
-        key.method_index = MethodOfRow(config, row[table.Column("method")], where);
-        key.point_index = PointOfRow(table, row, config, points, where);
-        key.trial = static_cast<int>(ParseIndex(row[table.Column("trial")], where));
-        auto column = [&](const char* name) -> const std::string& { return row[table.Column(name)]; };
+        const TrialResult key = RowKey(table, row, config, points);
+        const size_t job = JobIndex(points.size(), config.trials, key.method_index, key.point_index, key.trial);
         if (first) {
-          read(column, key, where);
-          continue;
+          if (by_job.count(job)) throw std::runtime_error("the same (method, point, trial) appears twice");
+          by_job[job] = trials.size();
+          trials.push_back(key);
+        } else if (!by_job.count(job)) {
+          throw std::runtime_error("no row of raw/trials.csv for this row");
         }
-        const auto it = by_key.find(std::make_tuple(key.method_index, key.point_index, key.trial));
-        if (it == by_key.end()) throw std::runtime_error("no row of raw/trials.csv for this row");
-        read(column, trials[it->second], where);
+        read([&](const char* name) -> const std::string& { return row[table.Column(name)]; }, trials[by_job[job]]);
       } catch (const std::exception& e) {
-        const std::string what = e.what();
-        throw std::runtime_error(what.rfind(where, 0) == 0 ? what : where + ": " + what);
+        throw std::runtime_error(table.where + ":" + std::to_string(r + 2) + ": " + e.what());
       }
     }
   };
-  for_each_row("raw/trials.csv", true, [&](const auto& column, TrialResult t, const std::string& where) {
+  for_each_row("raw/trials.csv", true, [&](const auto& column, TrialResult& t) {
     t.seed = std::stoull(column("seed"));
-    t.frames = static_cast<int>(ParseIndex(column("n_frames"), where));
-    t.metrics_frame = static_cast<int>(ParseIndex(column("metrics_frame"), where));
+    t.frames = static_cast<int>(ParseIndex(column("n_frames")));
+    t.metrics_frame = static_cast<int>(ParseIndex(column("metrics_frame")));
     for (int m = 0; m < kNumTrialMetrics; ++m) t.metrics[m] = ParseDouble(column(TrialMetricName(m)));
     const std::string& finite = column("finite");
     if (finite != "true" && finite != "false") throw std::runtime_error("finite must be true or false");
     t.finite = finite == "true";
-    if (t.trial >= config.trials) throw std::runtime_error("trial " + std::to_string(t.trial) + " is not in the config");
-    const auto key = std::make_tuple(t.method_index, t.point_index, t.trial);
-    if (by_key.count(key)) throw std::runtime_error("the same (method, point, trial) appears twice");
-    by_key[key] = trials.size();
-    trials.push_back(std::move(t));
   });
-  for_each_row("raw/curves.csv", false, [&](const auto& column, TrialResult& t, const std::string& where) {
+  for_each_row("raw/curves.csv", false, [&](const auto& column, TrialResult& t) {
     FrameError e;
-    e.frame = static_cast<int>(ParseIndex(column("frame"), where));
+    e.frame = static_cast<int>(ParseIndex(column("frame")));
     e.time_s = ParseDouble(column("time_s"));
     e.rot_err_deg = ParseDouble(column("rot_err_deg"));
     e.trans_err_m = ParseDouble(column("trans_err_m"));
     t.curve.push_back(e);
   });
-  for_each_row("raw/trajectories/index.csv", false, [&](const auto& column, TrialResult& t, const std::string&) {
+  for_each_row("raw/trajectories/index.csv", false, [&](const auto& column, TrialResult& t) {
     t.estimate = ReadTumTrajectory(JoinPath(dir, "raw/trajectories/" + column("estimate")));
     t.ground_truth = ReadTumTrajectory(JoinPath(dir, "raw/trajectories/" + column("ground_truth")));
   });

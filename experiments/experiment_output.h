@@ -22,9 +22,6 @@
 
 namespace slt {
 
-// Column names of the sweep parameters (their dotted keys).
-std::vector<std::string> SweepColumns(const ExperimentConfig& config);
-
 // raw/trials.csv, raw/curves.csv (when any trial has a curve) and raw/trajectories/.
 void WriteRawResults(const std::string& dir, const ExperimentConfig& config, const std::vector<TrialResult>& trials);
 // Reads them back (what WriteRawResults wrote, exactly: numbers round-trip). Throws

@@ -10,7 +10,6 @@
 
 #include "common/machine_info.h"
 #include "common/parallel.h"
-
 #include "common/random.h"
 #include "evaluation/consistency.h"
 #include "evaluation/statistics.h"
@@ -24,7 +23,6 @@ namespace slt {
 namespace {
 
 bool Finite(const Rigid3d& pose) { return pose.rotation.allFinite() && pose.translation.allFinite(); }
-
 
 // The metrics of one run from its per-frame tracker outputs (with the frame times and the wall
 // time of each Track() call) against the ground truth (empty: only the run's own metrics).
@@ -52,10 +50,9 @@ void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth,
   auto& m = r->metrics;
   m.fill(std::numeric_limits<double>::quiet_NaN());
   const double n = std::max<double>(1.0, static_cast<double>(run.size()));
-  double time_sum = 0.0;
-  for (double t : times_us) time_sum += t;
-  m[kTimeMeanUs] = time_sum / n;
-  m[kTimeMedianUs] = Quantile(times_us, 0.5);
+  const Summary times = Summarize(times_us);
+  m[kTimeMeanUs] = times.mean;
+  m[kTimeMedianUs] = times.median;
   m[kFeaturesUsed] = counts.features_used / n;
   m[kFeaturesAvailable] = counts.features_available / n;
   // The first frame's new reference defines the world: not a new reference pair.
@@ -115,16 +112,13 @@ void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth,
 
 // A recorded sequence: the image front end and the tracker frame by frame (ImageTracker), the
 // ground truth of the frames run, re-expressed from the first of them.
-void RunDatasetTrial(const ExperimentConfig& config, const MethodSpec& method, const DatasetSpec& dataset,
-                     TrialResult* r) {
+void RunDatasetTrial(const ExperimentConfig& config, PoseTracker& tracker, const DatasetSpec& dataset, TrialResult* r) {
   const std::unique_ptr<StereoImageSource> source =
       OpenStereoImages(dataset.path, DatasetLayoutFromName(dataset.layout), dataset.ground_truth);
   const int first = std::min(dataset.first_frame, source->size() - 1);
   const int end = dataset.end_frame < 0 ? source->size() : std::min(dataset.end_frame, source->size());
-  std::unique_ptr<PoseTracker> tracker =
-      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
   StereoFrontEnd front_end(FrontEndOptionsFromJson(config.frontend, config.name + ": frontend"), source->rig());
-  ImageTracker image_tracker(front_end, *tracker, source->rig());
+  ImageTracker image_tracker(front_end, tracker, source->rig());
   std::vector<TrackedFrame> run;
   std::vector<double> frame_times;
   for (int k = first; k < end; ++k) {
@@ -151,17 +145,16 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   r.method_index = job.method;
   r.point_index = job.point;
   r.trial = job.trial;
+  std::unique_ptr<PoseTracker> tracker =
+      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
   if (!config.datasets.empty()) {
-    RunDatasetTrial(config, method, config.datasets[job.point], &r);
+    RunDatasetTrial(config, *tracker, config.datasets[job.point], &r);
     return r;
   }
   const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
   const SimulatedSequence sim = Simulate(sim_config);
   const StereoSequence& sequence = sim.sequence;
   r.seed = sim_config.seed;
-
-  std::unique_ptr<PoseTracker> tracker =
-      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
   const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
   std::vector<double> frame_times;
   for (const StereoFrame& frame : sequence.frames) frame_times.push_back(frame.time);
@@ -209,38 +202,27 @@ ExperimentRun RunExperiment(const ExperimentConfig& config, const RunOptions& op
   const auto start = std::chrono::steady_clock::now();
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
   const std::vector<Job> all_jobs = ExperimentJobs(config);
-  std::vector<Job> jobs;
-  for (const Job& job : all_jobs) {
-    if (options.shard.Contains(job.index)) jobs.push_back(job);
+  std::vector<const TrialResult*> completed(all_jobs.size(), nullptr);  // --resume
+  for (const TrialResult& t : options.completed) {
+    const size_t index = JobIndex(points.size(), config.trials, t.method_index, t.point_index, t.trial);
+    if (index < completed.size()) completed[index] = &t;
   }
-
+  // The shard's jobs; those completed are filled in, the others (to_run) are run.
   ExperimentRun run;
   run.jobs_total = all_jobs.size();
-  int threads = options.threads > 0 ? options.threads : CpuCores();
-  run.trials.resize(jobs.size());
-
-  // Jobs already run (--resume) are filled in; the others are run.
+  std::vector<Job> jobs;
   std::vector<size_t> to_run;
-  {
-    std::vector<const TrialResult*> by_job(all_jobs.size(), nullptr);
-    for (const TrialResult& t : options.completed) {
-      const size_t index = JobIndex(points.size(), config.trials, t.method_index, t.point_index, t.trial);
-      if (index < by_job.size()) by_job[index] = &t;
-    }
-    for (size_t i = 0; i < jobs.size(); ++i) {
-      if (by_job[jobs[i].index] != nullptr) {
-        run.trials[i] = *by_job[jobs[i].index];
-      } else {
-        to_run.push_back(i);
-      }
-    }
+  for (const Job& job : all_jobs) {
+    if (!options.shard.Contains(job.index)) continue;
+    if (completed[job.index] == nullptr) to_run.push_back(jobs.size());
+    run.trials.push_back(completed[job.index] != nullptr ? *completed[job.index] : TrialResult());
+    jobs.push_back(job);
   }
-
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, to_run.size()))));
-  run.threads = threads;
+  const int threads = options.threads > 0 ? options.threads : CpuCores();
+  run.threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, to_run.size()))));
   std::mutex mutex;  // guards done and the callbacks
   size_t done = jobs.size() - to_run.size();
-  ParallelFor(to_run.size(), threads, [&](size_t n) {
+  ParallelFor(to_run.size(), run.threads, [&](size_t n) {
     const size_t i = to_run[n];
     try {
       run.trials[i] = RunTrial(config, points, jobs[i]);

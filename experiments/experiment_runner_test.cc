@@ -240,6 +240,7 @@ TEST(Runner, RunReplacesTheOutputDirectoryWholeAndKeepsShards) {
   c.trials = 1;
   DriverOptions options;
   options.out_dir = TempDir("swap");
+  WriteTextFileAtomically(options.out_dir + "/run.json", "{}\n");  // an earlier run's output
   WriteTextFileAtomically(options.out_dir + "/stale.csv", "from an earlier run\n");
   fs::create_directories(options.out_dir + "/raw/shards/0-of-2");
   WriteTextFileAtomically(options.out_dir + "/raw/shards/0-of-2/keep.txt", "a shard\n");
@@ -251,6 +252,29 @@ TEST(Runner, RunReplacesTheOutputDirectoryWholeAndKeepsShards) {
   for (const auto& entry : fs::directory_iterator(fs::path(options.out_dir).parent_path())) {
     EXPECT_EQ(entry.path().filename().string().find("slt_experiments_swap."), std::string::npos) << entry.path();
   }
+}
+
+// A directory no run wrote (no run.json) is not replaced: the user's files in it stay.
+TEST(Runner, RunRefusesToReplaceADirectoryItDidNotWrite) {
+  ExperimentConfig c = TinyConfig();
+  c.trials = 1;
+  DriverOptions options;
+  options.out_dir = TempDir("foreign");
+  WriteTextFileAtomically(options.out_dir + "/notes.md", "mine\n");
+  try {
+    RunAndWrite(c, options);
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(options.out_dir + ": holds files no run_experiment wrote"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(ReadTextFile(options.out_dir + "/notes.md"), "mine\n");
+  EXPECT_FALSE(fs::exists(options.out_dir + "/summary.csv"));
+  // Only other runs' shards: the merge target of a sharded run, accepted.
+  fs::remove(options.out_dir + "/notes.md");
+  fs::create_directories(options.out_dir + "/raw/shards/0-of-2");
+  RunAndWrite(c, options);
+  EXPECT_TRUE(fs::exists(options.out_dir + "/summary.csv"));
 }
 
 TEST(Runner, ResumeReusesTheFinishedJobsOfTheSameConfig) {

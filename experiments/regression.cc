@@ -2,20 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <set>
 
+#include "common/table.h"
 #include "methods/pose_tracker.h"
 
 namespace slt {
 namespace {
 
-std::string Num(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.4g", v);
-  return buffer;
-}
+std::string Num(double v) { return StringPrintf("%.4g", v); }
 
 }  // namespace
 
@@ -49,35 +45,22 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
   for (const auto& row : reference.rows) {
     if (!reference_methods.count(row[method_column])) reference_methods[row[method_column]] = row[method_column];
   }
-  std::set<std::string> current_ids;
-  for (const MethodSpec& m : config.methods) current_ids.insert(m.Id());
-  const std::vector<std::string> registered_names = RegisteredTrackerNames();
-  const std::set<std::string> registered(registered_names.begin(), registered_names.end());
+  const std::vector<std::string> registered = RegisteredTrackerNames();
   for (const auto& [id, name] : reference_methods) {
-    if (!registered.count(name)) {
+    if (std::find(registered.begin(), registered.end(), name) == registered.end()) {
       report.failures.push_back("reference method '" + id + "' (tracker '" + name +
                                 "') is no longer registered: restore it, or regenerate the references "
                                 "deliberately with scripts/update_references.sh");
-    } else if (!current_ids.count(id)) {
+    } else if (MethodIndex(config, id) < 0) {
       report.failures.push_back("reference method '" + id + "' was not run: the config no longer includes it "
                                 "(regenerate the references with scripts/update_references.sh if intended)");
     }
   }
 
-  // Reference rows by (method id, sweep values).
-  std::map<std::pair<std::string, std::vector<std::string>>, size_t> by_key;
-  const std::vector<std::string> sweep_columns = SweepColumns(config);
-  for (const std::string& c : sweep_columns) {
-    if (!reference.HasColumn(c)) {
-      report.failures.push_back(reference.where + ": no column '" + c +
-                                "': the sweep changed since the reference was made (scripts/update_references.sh)");
-      return report;
-    }
-  }
+  // Reference rows by (method id, sweep point): the same sweep (checked above) has the same points.
+  std::map<std::pair<std::string, std::string>, size_t> by_key;
   for (size_t r = 0; r < reference.rows.size(); ++r) {
-    std::vector<std::string> values;
-    for (const std::string& c : sweep_columns) values.push_back(reference.rows[r][reference.Column(c)]);
-    by_key[{reference.rows[r][method_column], values}] = r;
+    by_key[{reference.rows[r][method_column], reference.rows[r][reference.Column("point")]}] = r;
   }
 
   const struct {
@@ -91,9 +74,7 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
       no_reference.insert(id);
       continue;
     }
-    std::vector<std::string> values;
-    for (const nlohmann::json& v : points.at(row.point).values) values.push_back(FormatValue(v));
-    const auto it = by_key.find({id, values});
+    const auto it = by_key.find({id, std::to_string(row.point)});
     const std::string at = "'" + id + "' at " + PointText(config, points.at(row.point));
     if (it == by_key.end()) {
       report.failures.push_back(at + ": no reference row (the sweep changed? regenerate with scripts/update_references.sh)");

@@ -19,6 +19,7 @@
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
+#include "common/table.h"
 #include "experiments/experiment_driver.h"
 #include "experiments/regression.h"
 
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
   ProgressBar bar;
   if (!quiet && ::isatty(STDERR_FILENO)) options.run.on_progress = [&bar](size_t done, size_t total) { bar.Update(done, total); };
 
-  try {
+  return RunProgram("run_experiment", [&] {
     std::string summary;
     if (!merge_dirs.empty()) {
       const std::string first_config = (std::filesystem::path(merge_dirs[0]) / "config.resolved.json").string();
@@ -110,16 +111,11 @@ int main(int argc, char** argv) {
       options.out_dir = out_dir;
       const ExperimentRun run = RunAndWrite(config, options);
       if (shard.IsWhole()) ReportExpectation(config, run.trials);
-      char buffer[160];
-      std::snprintf(buffer, sizeof(buffer), "%zu of %zu trials in %.1f s on %d threads", run.trials.size(),
-                    run.jobs_total, run.wall_time_s, run.threads);
-      summary = buffer;
+      summary = StringPrintf("%zu of %zu trials in %.1f s on %d threads", run.trials.size(), run.jobs_total,
+                             run.wall_time_s, run.threads);
     }
     if (!no_plots && shard.IsWhole()) RunPlotScript(options.out_dir, quiet);
     if (!quiet) std::printf("run_experiment: %s: %s\n", options.out_dir.c_str(), summary.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "run_experiment: error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -20,7 +20,7 @@ TEST(ImageTracker, KittiPredictionReachesTheFrontEndAndSeedsMostLines) {
   // The first frames of the KITTI excerpt (about 1.2 m per frame): after the tracker's first
   // update the front end gets the tracker's predicted motion and seeds most tracked lines with
   // it; once the filter's start is over (its first two updates fall short of the motion: its
-  // velocity prior is sized for the paper's slow motion, results/datasets/README.md) the
+  // velocity prior is sized for the paper's slow motion, results/real_data/README.md) the
   // prediction is within a few centimetres of the true motion.
   const std::string dir = SharedData() + "/kitti_excerpt_1";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << dir << " absent (the real excerpts are not part of the repository)";

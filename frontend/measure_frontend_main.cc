@@ -30,13 +30,14 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/json_reader.h"
+#include "common/table.h"
 #include "dataset/trajectory.h"
 #include "evaluation/metrics.h"
 #include "frontend/frontend_audit.h"
@@ -71,22 +72,19 @@ std::vector<MeasuredScene> Scenes(int frames, const std::string& only_scene) {
   return scenes;
 }
 
-std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string Format(const char* format, ...) {
-  char buffer[1024];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof(buffer), format, args);
-  va_end(args);
-  return buffer;
+// A Markdown table with these column titles, the first `left` of them left-aligned.
+Table MarkdownTable(const std::vector<std::string>& titles, size_t left) {
+  Table table;
+  for (size_t c = 0; c < titles.size(); ++c) table.columns.emplace_back(titles[c], c < left ? Table::Align::kLeft : Table::Align::kRight);
+  return table;
 }
 
 std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, const FrontEndOptions& front_end_options) {
   const DetectionOptions& base = front_end_options.detection;
-  std::string table =
-      "| scene | detector | images | GT segments >= 40 px | recall | precision | endpoint RMS, px | segments per image "
-      "| ms per image | of those, photometrically visible | recall of those |\n"
-      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  Table table = MarkdownTable({"scene", "detector", "images", "GT segments >= 40 px", "recall", "precision",
+                               "endpoint RMS, px", "segments per image", "ms per image",
+                               "of those, photometrically visible", "recall of those"},
+                              2);
   for (const MeasuredScene& scene : scenes) {
     const SimulationConfig& config = scene.config;
     const SimulatedSequence& sequence = scene.sequence;
@@ -136,14 +134,16 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
         ScoreDetections(projected, c == 0 ? frame.left : frame.right, lines, 40.0, &score);
         ScoreDetections(projected, photometric[i], lines, 40.0, &photometric_score);
       }
-      table += Format("| %s | %s | %d | %d | %.3f | %.3f | %.2f | %.0f | %.1f | %d | %.3f |\n", scene.name.c_str(), name,
-                      score.images, score.gt_segments, score.Recall(), score.Precision(), score.EndpointRms(),
-                      static_cast<double>(score.detections) / score.images, 1e3 * score.seconds / score.images,
-                      photometric_score.gt_segments, photometric_score.Recall());
+      table.AddRow({scene.name, name, std::to_string(score.images), std::to_string(score.gt_segments),
+                    StringPrintf("%.3f", score.Recall()), StringPrintf("%.3f", score.Precision()),
+                    StringPrintf("%.2f", score.EndpointRms()),
+                    StringPrintf("%.0f", static_cast<double>(score.detections) / score.images),
+                    StringPrintf("%.1f", 1e3 * score.seconds / score.images),
+                    std::to_string(photometric_score.gt_segments), StringPrintf("%.3f", photometric_score.Recall())});
       std::fprintf(stderr, "measure_frontend: %s, %s: recall %.3f\n", scene.name.c_str(), name, score.Recall());
     }
   }
-  return table;
+  return table.Markdown();
 }
 
 double Ate(const SimulatedSequence& sequence, const Trajectory& estimate) {
@@ -161,16 +161,17 @@ Trajectory TrackObservations(const std::string& method, const StereoSequence& ob
 }
 
 std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::string& method, const FrontEndOptions& options) {
-  std::string table =
-      "| scene | frames | path, m | detection frames | new references | lost | stereo matches | not judged | correct "
-      "(of judged) | correct, 3 px 5 deg | tracks (>= 2 frames, judged) | not judged | correct | correct, 3 px 5 deg | mean track length | endpoint RMS, px | ATE images, mm | ATE perfect, mm | ATE "
-      "noisy (same RMS), mm | ratio images / perfect | ratio images / noisy |\n"
-      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  std::string times =
-      "| scene | steady frames | track, ms | filter, ms | steady front end, ms | new-reference frames | detect, ms | "
-      "describe, ms | match, ms | track, ms | filter, ms | new-reference front end, ms | MSLD per line, us | lines "
-      "described per frame | tracker, ms |\n"
-      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  Table table = MarkdownTable(
+      {"scene", "frames", "path, m", "detection frames", "new references", "lost", "stereo matches", "not judged",
+       "correct (of judged)", "correct, 3 px 5 deg", "tracks (>= 2 frames, judged)", "not judged", "correct",
+       "correct, 3 px 5 deg", "mean track length", "endpoint RMS, px", "ATE images, mm", "ATE perfect, mm",
+       "ATE noisy (same RMS), mm", "ratio images / perfect", "ratio images / noisy"},
+      1);
+  Table times = MarkdownTable({"scene", "steady frames", "track, ms", "filter, ms", "steady front end, ms",
+                               "new-reference frames", "detect, ms", "describe, ms", "match, ms", "track, ms",
+                               "filter, ms", "new-reference front end, ms", "MSLD per line, us",
+                               "lines described per frame", "tracker, ms"},
+                              1);
   for (const MeasuredScene& scene : scenes) {
     const SimulationConfig& config = scene.config;
     const SimulatedSequence& sequence = scene.sequence;
@@ -220,26 +221,26 @@ std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::s
     noisy_config.noise.model = NoiseModel::kGaussian;
     noisy_config.noise.endpoint_px = r.EndpointRms();
     const double ate_noisy = Ate(sequence, TrackObservations(method, Simulate(noisy_config).sequence));
-    table += Format("| %s | %d | %.2f | %d | %d | %d | %d | %d | %.4f | %.4f | %d | %d | %.4f | %.4f | %.1f | %.3f | %.2f | %.2f | %.2f "
-                    "| %.2f | %.2f |\n",
-                    scene.name.c_str(), config.frames, path, detection_frames, new_references, lost, r.matches,
-                    r.matches_unjudged, r.MatchPrecision(), ri.MatchPrecision(), r.tracks, r.tracks_unjudged, r.TrackPrecision(),
-                    ri.TrackPrecision(),
-                    r.tracks ? static_cast<double>(r.track_frames) / r.tracks : 0.0, r.EndpointRms(), 1e3 * ate_images,
-                    1e3 * ate_perfect, 1e3 * ate_noisy, ate_images / ate_perfect, ate_images / ate_noisy);
-    const auto ms = [](double s, int n) { return n ? 1e3 * s / n : 0.0; };
-    times += Format("| %s | %d | %.2f | %.2f | %.2f | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.0f | %.2f |\n",
-                    scene.name.c_str(), steady_frames, ms(steady.track, steady_frames), ms(steady.filter, steady_frames),
-                    ms(steady.Total(), steady_frames), detection_frames, ms(detecting.detect, detection_frames),
-                    ms(detecting.describe, detection_frames), ms(detecting.match, detection_frames),
-                    ms(detecting.track, detection_frames), ms(detecting.filter, detection_frames),
-                    ms(detecting.Total(), detection_frames), described ? 1e6 * detecting.describe / described : 0.0,
-                    detection_frames ? static_cast<double>(described) / detection_frames : 0.0,
-                    ms(tracker_seconds, config.frames));
+    const auto f = [](const char* format, double v) { return StringPrintf(format, v); };
+    const auto n = [](long v) { return std::to_string(v); };
+    table.AddRow({scene.name, n(config.frames), f("%.2f", path), n(detection_frames), n(new_references), n(lost),
+                  n(r.matches), n(r.matches_unjudged), f("%.4f", r.MatchPrecision()), f("%.4f", ri.MatchPrecision()),
+                  n(r.tracks), n(r.tracks_unjudged), f("%.4f", r.TrackPrecision()), f("%.4f", ri.TrackPrecision()),
+                  f("%.1f", r.tracks ? static_cast<double>(r.track_frames) / r.tracks : 0.0),
+                  f("%.3f", r.EndpointRms()), f("%.2f", 1e3 * ate_images), f("%.2f", 1e3 * ate_perfect),
+                  f("%.2f", 1e3 * ate_noisy), f("%.2f", ate_images / ate_perfect), f("%.2f", ate_images / ate_noisy)});
+    const auto ms = [&](double s, int count) { return f("%.2f", count ? 1e3 * s / count : 0.0); };
+    times.AddRow({scene.name, n(steady_frames), ms(steady.track, steady_frames), ms(steady.filter, steady_frames),
+                  ms(steady.Total(), steady_frames), n(detection_frames), ms(detecting.detect, detection_frames),
+                  ms(detecting.describe, detection_frames), ms(detecting.match, detection_frames),
+                  ms(detecting.track, detection_frames), ms(detecting.filter, detection_frames),
+                  ms(detecting.Total(), detection_frames), f("%.1f", described ? 1e6 * detecting.describe / described : 0.0),
+                  f("%.0f", detection_frames ? static_cast<double>(described) / detection_frames : 0.0),
+                  ms(tracker_seconds, config.frames)});
     std::fprintf(stderr, "measure_frontend: %s: ATE images %.2f mm, perfect %.2f mm, noisy %.2f mm\n",
                  scene.name.c_str(), 1e3 * ate_images, 1e3 * ate_perfect, 1e3 * ate_noisy);
   }
-  return table + "\nPer-stage times (wall clock inside the run, single thread):\n\n" + times;
+  return table.Markdown() + "\nPer-stage times (wall clock inside the run, single thread):\n\n" + times.Markdown();
 }
 
 }  // namespace
@@ -252,16 +253,14 @@ int main(int argc, char** argv) {
   std::string method = "trifocal_line_ekf", out, config_path;
   bool skip_detectors = false, skip_sequences = false;
   std::string only_scene;
-  app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
-  app.add_option("--step", step, "Detector comparison on every step-th frame")->check(CLI::Range(1, 100000));
+  AddMeasurementOptions(app, &frames, 2, &step, &out, "Write detectors.md and sequences.md into this folder");
   app.add_option("--method", method, "Tracker paired with the front end");
   app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
-  app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
   app.add_flag("--skip-sequences", skip_sequences, "Only the detectors");
   app.add_option("--scene", only_scene, "Only the scenes whose name contains this (room, corridor, paper)");
-  CLI11_PARSE(app, argc, argv);
-  try {
+  if (const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend"); exit_code >= 0) return exit_code;
+  return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
     const FrontEndOptions options =
         config_path.empty() ? FrontEndOptions() : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
@@ -271,8 +270,8 @@ int main(int argc, char** argv) {
         config_path.empty() ? ""
                             : " --config " + std::filesystem::path(config_path).filename().string() + "` with `" +
                                   ReadJsonFile(config_path).dump();
-    const std::string header = Format("Generated by `measure_frontend --frames %d --step %d --method %s%s`.\n\n", frames,
-                                      step, method.c_str(), config_note.c_str());
+    const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s`.\n\n",
+                                            frames, step, method.c_str(), config_note.c_str());
     const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, step, options);
     const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, method, options);
     std::printf("%s\n%s", detectors.c_str(), sequences.c_str());
@@ -282,8 +281,5 @@ int main(int argc, char** argv) {
       if (!skip_sequences) WriteTextFileAtomically(out + "/sequences.md", sequences);
     }
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "measure_frontend: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

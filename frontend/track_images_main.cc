@@ -21,6 +21,7 @@
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
+#include "common/table.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
 #include "frontend/frontend_viz.h"
@@ -60,18 +61,17 @@ int main(int argc, char** argv) {
   bool progress_forced = false;
   app.add_option("--path,-p", path, "Sequence folder (ASL/EuRoC layout as `simulate --images` writes, or KITTI)")->required();
   app.add_option("--dataset", dataset, "Layout: auto, asl (= euroc) or kitti");
-  app.add_option("--method,-m", method, "Tracker name (track --list)")->required();
   app.add_option("--output,-o", output, "Trajectory to write, TUM format (camera-to-world)")->required();
   app.add_option("--save-observations", observations_path, "Also write the front end's observations, stereo-lines/1");
   app.add_option("--viz", viz_dir, "Write pictures (Figs. 7-9 of the paper) into this folder");
   app.add_option("--frames", frames_text, "Pairs A:B (A included, B excluded; either may be omitted)");
   app.add_option("--config,-c", config_path, "Front-end options, JSON (docs/frontend.md)");
-  app.add_option("--tracker-config", tracker_config_path, "Tracker options, JSON");
+  AddTrackerOptions(app, &method, &tracker_config_path, "--tracker-config")->required();
   app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, lines, detection, stage times");
   app.add_flag("--progress", progress_forced, "Show progress even when stderr is not a terminal");
   if (const int exit_code = ParseCommandLine(app, argc, argv, "track_images"); exit_code >= 0) return exit_code;
 
-  try {
+  return RunProgram("track_images", [&] {
     cv::setNumThreads(1);  // single thread, as measured
     const FrontEndOptions options = config_path.empty() ? FrontEndOptions()
                                                         : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
@@ -132,9 +132,8 @@ int main(int argc, char** argv) {
       if (show_progress) {
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const int done = k - first + 1;
-        char extra[64];
-        std::snprintf(extra, sizeof(extra), " %.1f fps  %d lines ", done / std::max(elapsed, 1e-9), stats.live);
-        progress.Update(static_cast<size_t>(done), static_cast<size_t>(end - first), extra);
+        progress.Update(static_cast<size_t>(done), static_cast<size_t>(end - first),
+                        StringPrintf(" %.1f fps  %d lines ", done / std::max(elapsed, 1e-9), stats.live));
       }
     }
     WriteTumTrajectory(output, trajectory);
@@ -159,11 +158,5 @@ int main(int argc, char** argv) {
                  ms(detecting.filter, detection_frames), ms(detecting.Total(), detection_frames),
                  ms(tracker_seconds, frames), ms(read_seconds, frames), frames / std::max(wall, 1e-9));
     return 0;
-  } catch (const CLI::Error& e) {
-    std::fprintf(stderr, "track_images: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "track_images: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

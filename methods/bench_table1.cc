@@ -174,18 +174,14 @@ std::string Seconds(double s) {
   if (s < 0) return "> " + std::to_string(static_cast<int>(-s)) + " s";
   // Fixed notation like the paper's, with at least two significant digits.
   const int decimals = std::max(4, 1 - static_cast<int>(std::floor(std::log10(s))));
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.*f s", decimals, s);
-  return buffer;
+  return StringPrintf("%.*f s", decimals, s);
 }
 
 // The paper's numbers as printed.
 std::string PaperSeconds(double s) {
   if (std::isnan(s)) return "N/A";
   if (s < 0) return "> " + std::to_string(static_cast<int>(-s)) + " s";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%g s", s);
-  return buffer;
+  return StringPrintf("%g s", s);
 }
 
 // Table 1's columns, the first titled `first`.
@@ -342,12 +338,9 @@ int main(int argc, char** argv) {
   md += "\nRatios (time at 30 lines / time at 10 lines):";
   for (const std::string& m : methods) {
     md += m == methods.front() ? " " : "; ";
-    char buffer[128];
-    std::snprintf(buffer, sizeof(buffer), "%s %.2f", m.c_str(), ours[m][3] / ours[m][1]);
-    md += buffer;
+    md += StringPrintf("%s %.2f", m.c_str(), ours[m][3] / ours[m][1]);
     if (const PaperRow* row = PaperRowFor(m); row != nullptr && row->seconds[1] > 0) {
-      std::snprintf(buffer, sizeof(buffer), " (paper %.2f)", row->seconds[3] / row->seconds[1]);
-      md += buffer;
+      md += StringPrintf(" (paper %.2f)", row->seconds[3] / row->seconds[1]);
     }
   }
   md += ".\n";

@@ -25,10 +25,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Run a pose tracker over a stereo-lines/1 sequence and write its trajectory (TUM, camera-to-world)."};
   std::string method, input, output, config_path, kitti_path, log_path;
   bool list = false, print_config = false, list_options = false;
-  app.add_option("--method,-m", method, "Tracker name (see --list)");
+  AddTrackerOptions(app, &method, &config_path, "--config,-c");
   app.add_option("--input,-i", input, "Observations, stereo-lines/1 JSON");
   app.add_option("--output,-o", output, "Trajectory to write, TUM format");
-  app.add_option("--config,-c", config_path, "Tracker options, JSON (missing keys keep their defaults)");
   app.add_option("--kitti", kitti_path, "Also write the trajectory in KITTI format");
   app.add_option("--log", log_path, "Per-frame CSV: frame, time, status, reason, features used and left out by reason, time per frame, pose covariance");
   app.add_flag("--list", list, "List the registered trackers and exit");
@@ -36,7 +35,7 @@ int main(int argc, char** argv) {
   app.add_flag("--list-options", list_options, "List the tracker's options (key, default, allowed values, doc) and exit");
   if (const int exit_code = ParseCommandLine(app, argc, argv, "track"); exit_code >= 0) return exit_code;
 
-  try {
+  return RunProgram("track", [&] {
     if (list) {
       for (const TrackerInfo& info : RegisteredTrackers()) {
         std::cout << info.name << "\t" << info.description << "\n";
@@ -114,11 +113,5 @@ int main(int argc, char** argv) {
                  reasons.empty() ? "none" : reasons.c_str(), counts.features_unmatched, counts.features_degenerate,
                  counts.features_outside_gate);
     return 0;
-  } catch (const CLI::Error& e) {
-    std::fprintf(stderr, "track: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "track: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

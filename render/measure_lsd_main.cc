@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/json_reader.h"
+#include "common/table.h"
 #include "render/sequence_renderer.h"
 
 namespace slt {
@@ -79,16 +81,14 @@ int main(int argc, char** argv) {
   CLI::App app{"Fraction of the visible ground-truth segments found by OpenCV's LSD in rendered images."};
   int frames = 60, step = 10;
   std::string out;
-  app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(1, 100000));
-  app.add_option("--step", step, "Measure every step-th frame")->check(CLI::Range(1, 100000));
-  app.add_option("--out", out, "Also write the table to this Markdown file");
-  CLI11_PARSE(app, argc, argv);
-  try {
+  AddMeasurementOptions(app, &frames, 1, &step, &out, "Also write the table to this Markdown file");
+  if (const int exit_code = ParseCommandLine(app, argc, argv, "measure_lsd"); exit_code >= 0) return exit_code;
+  return RunProgram("measure_lsd", [&] {
     cv::setNumThreads(1);
     const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector();
-    std::string table =
-        "| scene | images | visible segments (>= 20 px) | found | fraction found | length covered | LSD segments per image |\n"
-        "|---|---:|---:|---:|---:|---:|---:|\n";
+    Table table;
+    table.columns = {{"scene", Table::Align::kLeft}, {"images"}, {"visible segments (>= 20 px)"}, {"found"},
+                     {"fraction found"}, {"length covered"}, {"LSD segments per image"}};
     for (const char* scene : {"room", "corridor", "paper"}) {
       // The ground truth is what the camera sees: clipped to the image, occluded parts removed.
       const nlohmann::json j = {{"scene", {{"type", scene}}},
@@ -108,19 +108,14 @@ int main(int argc, char** argv) {
           Score(camera == 0 ? frame.left : frame.right, detected, &recall);
         }
       }
-      char row[256];
-      std::snprintf(row, sizeof(row), "| %s | %d | %d | %d | %.3f | %.3f | %.0f |\n", scene, recall.images,
-                    recall.segments, recall.found, static_cast<double>(recall.found) / std::max(1, recall.segments),
-                    recall.covered / std::max(1e-9, recall.length),
-                    static_cast<double>(recall.detections) / std::max(1, recall.images));
-      table += row;
+      table.AddRow({scene, std::to_string(recall.images), std::to_string(recall.segments), std::to_string(recall.found),
+                    StringPrintf("%.3f", static_cast<double>(recall.found) / std::max(1, recall.segments)),
+                    StringPrintf("%.3f", recall.covered / std::max(1e-9, recall.length)),
+                    StringPrintf("%.0f", static_cast<double>(recall.detections) / std::max(1, recall.images))});
       std::fprintf(stderr, "measure_lsd: %s done\n", scene);
     }
-    std::printf("%s", table.c_str());
-    if (!out.empty()) WriteTextFileAtomically(out, table);
+    std::printf("%s", table.Markdown().c_str());
+    if (!out.empty()) WriteTextFileAtomically(out, table.Markdown());
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "measure_lsd: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <bitset>
+#include <cstdint>
 #include <vector>
 #include <nlohmann/json.hpp>
 
@@ -103,6 +104,22 @@ class FeatureModel {
                                Rigid3d* /*refined_cam_from_ref*/) {
     return false;
   }
+};
+
+// A model whose features are matches of a reference feature with a current one (Match: a
+// struct with the feature's `id`): feature i is matches_[i], rebuilt by each SetCurrent.
+template <typename MatchType>
+class MatchedFeatureModel : public FeatureModel {
+ public:
+  int NumFeatures() const override { return static_cast<int>(matches_.size()); }
+  int CurrentStereoFeatures() const override { return current_stereo_; }
+  // The id of feature `index` (for diagnostics and tests).
+  std::int64_t FeatureId(int index) const { return matches_[index].id; }
+
+ protected:
+  using Match = MatchType;
+  std::vector<Match> matches_;
+  int current_stereo_ = 0;  // CurrentStereoFeatures()
 };
 
 }  // namespace slt

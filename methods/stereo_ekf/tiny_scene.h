@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <ostream>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -61,6 +63,31 @@ bool EvaluateOnFrames(const Options& options, const StereoRig& rig, const Stereo
   model.SetReference(reference);
   model.SetCurrent(current);
   return model.Evaluate(index, cam_from_ref, with_covariance, block);
+}
+
+// What a model makes of a reference and a current frame: the counts SetReference, SetCurrent
+// and CurrentStereoFeatures return and the ids of its features in order (FeatureId).
+struct Association {
+  int reference = 0, current = 0, current_stereo = 0;
+  std::vector<std::int64_t> ids;
+  bool operator==(const Association& o) const {
+    return std::tie(reference, current, current_stereo, ids) == std::tie(o.reference, o.current, o.current_stereo, o.ids);
+  }
+};
+inline std::ostream& operator<<(std::ostream& out, const Association& a) {
+  out << "reference " << a.reference << ", current " << a.current << ", current stereo " << a.current_stereo << ", ids";
+  for (std::int64_t id : a.ids) out << " " << id;
+  return out;
+}
+template <typename Model>
+Association Associate(Model& model, const StereoRig& rig, const StereoFrame& reference, const StereoFrame& current) {
+  Association a;
+  model.Reset(rig);
+  a.reference = model.SetReference(reference);
+  a.current = model.SetCurrent(current);
+  a.current_stereo = model.CurrentStereoFeatures();
+  for (int i = 0; i < model.NumFeatures(); ++i) a.ids.push_back(model.FeatureId(i));
+  return a;
 }
 
 }  // namespace slt

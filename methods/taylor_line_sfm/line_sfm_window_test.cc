@@ -33,6 +33,13 @@ void Add(const Rigid3d& cam_from_world, const StereoFrame& frame, LineSfmWindow*
   window->AddFrame(cam_from_world, Segments(frame.left), Segments(frame.right));
 }
 
+// Resets `window` on the rig and starts it with frame 0 at the identity, its lines triangulated.
+void StartAtFrame0(const SimulatedSequence& sim, LineSfmWindow* window) {
+  window->Reset(sim.sequence.rig);
+  Add(Rigid3d(), sim.sequence.frames[0], window);
+  window->TriangulateNewLines();
+}
+
 double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
   return RotationAngle(a.rotation * b.rotation.transpose()) * 180.0 / M_PI;
 }
@@ -244,9 +251,7 @@ TEST(LineSfmWindow, KeepsTheLastKFramesAndTheLinesTheyObserve) {
   TaylorLineSfmOptions options;
   options.window_frames = 2;
   LineSfmWindow window(options);
-  window.Reset(sim.sequence.rig);
-  Add(Rigid3d(), sim.sequence.frames[0], &window);
-  window.TriangulateNewLines();
+  StartAtFrame0(sim, &window);
   const int lines = window.NumLines();
   ASSERT_GT(lines, 2);
   // Frame 1 observes only two of the lines: the others leave with frame 0 when frame 2 comes.
@@ -268,9 +273,7 @@ TEST(LineSfmWindow, KeepsTheLastKFramesAndTheLinesTheyObserve) {
 TEST(LineSfmWindow, AFrameWithOneLineIsNotSolved) {
   const SimulatedSequence sim = NoiseFree(2);
   LineSfmWindow window{TaylorLineSfmOptions()};
-  window.Reset(sim.sequence.rig);
-  Add(Rigid3d(), sim.sequence.frames[0], &window);
-  window.TriangulateNewLines();
+  StartAtFrame0(sim, &window);
   StereoFrame one = sim.sequence.frames[1];
   one.left.resize(1);
   one.right.clear();
@@ -285,9 +288,7 @@ TEST(LineSfmWindow, AFrameWithOneLineIsNotSolved) {
 TEST(LineSfmWindow, CountsTheLinesWhoseNewestSegmentsFitThemAtTheNewestPose) {
   const SimulatedSequence sim = NoiseFree(2);
   LineSfmWindow window{TaylorLineSfmOptions()};
-  window.Reset(sim.sequence.rig);
-  Add(Rigid3d(), sim.sequence.frames[0], &window);
-  window.TriangulateNewLines();
+  StartAtFrame0(sim, &window);
   // Frame 1 at its true pose, but the left segment of its first line moved 20 px across.
   StereoFrame moved = sim.sequence.frames[1];
   ASSERT_FALSE(moved.left.empty());

@@ -80,7 +80,14 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema();
 void ReadLineTransferOptions(JsonReader& reader, LineTransferOptions* options);
 nlohmann::json LineTransferOptionsToJson(const LineTransferOptions& options);
 
-class LineTransferModel final : public FeatureModel {
+// A reference line matched with a current one (LineTransferModel's features).
+struct LineTransferMatch {
+  std::int64_t id;
+  int reference;  // index into the reference lines
+  int current;    // index into the current lines
+};
+
+class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
  public:
   // One observed segment with its normalised line (unit norm) and the Jacobian of that line
   // with respect to the segment's endpoints (scaled consistently with the unit norm; the
@@ -100,15 +107,11 @@ class LineTransferModel final : public FeatureModel {
   void Reset(const StereoRig& rig) override;
   int SetReference(const StereoFrame& frame) override;
   int SetCurrent(const StereoFrame& frame) override;
-  int NumFeatures() const override { return static_cast<int>(matches_.size()); }
-  int CurrentStereoFeatures() const override { return current_stereo_; }
   bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                 FeatureBlock* block) const override;
   bool RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
                        Rigid3d* refined_cam_from_ref) override;
 
-  // The id of feature `index` (for diagnostics and tests).
-  std::int64_t FeatureId(int index) const { return matches_[index].id; }
   // The observations of feature `index` in the reference and the current pair, and the
   // reference pair's 3-D line in the reference frame (StereoPairLine): for methods
   // that use this model's matching and residuals with solvers of their own
@@ -135,12 +138,6 @@ class LineTransferModel final : public FeatureModel {
     Eigen::Matrix<double, 6, 4> line_d_tangent;
     Eigen::Matrix4d tangent_covariance;
   };
-  struct Match {
-    std::int64_t id;
-    int reference;  // index into reference_
-    int current;    // index into current_
-  };
-
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
   // Reference line `index` becomes the refiner's refined line, with the covariance of its
@@ -189,8 +186,6 @@ class LineTransferModel final : public FeatureModel {
   std::vector<StereoLine> reference_;
   std::vector<ReferenceLine> reference_lines_;  // parallel to reference_
   std::vector<StereoLine> current_;
-  std::vector<Match> matches_;
-  int current_stereo_ = 0;
   // Scratch for CollectStereoLines, kept to avoid allocation per frame.
   std::vector<LineObservation> left_sorted_, right_sorted_;
 };

@@ -119,17 +119,12 @@ TEST(LineTransferModel, EndpointDistancesAreEvaluatesResidual) {
 TEST(LineTransferModel, AssociatesByIdAndSkipsMonocularLines) {
   TinyScene scene;
   LineTransferModel model(Options("current_to_reference", "endpoint_distance"));
-  model.Reset(scene.rig);
   StereoFrame ref = scene.Frame(Rigid3d());
   StereoFrame cur = scene.Frame(SomeMotion());
   ref.right.erase(ref.right.begin());          // line 10: left only in the reference
   cur.left.erase(cur.left.begin() + 2);        // line 16: right only in the current frame
   std::reverse(cur.left.begin(), cur.left.end());  // order does not matter
-  EXPECT_EQ(model.SetReference(ref), 3);
-  EXPECT_EQ(model.SetCurrent(cur), 2);
-  EXPECT_EQ(model.CurrentStereoFeatures(), 3);
-  EXPECT_EQ(model.FeatureId(0), 13);
-  EXPECT_EQ(model.FeatureId(1), 19);
+  EXPECT_EQ(Associate(model, scene.rig, ref, cur), (Association{3, 2, 3, {13, 19}}));
 }
 
 TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {

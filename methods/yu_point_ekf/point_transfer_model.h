@@ -143,20 +143,26 @@ bool StereoEndpointsSwapped(const StereoPointGeometry& geometry, const Segment2d
 // True when the current segment runs the other way along the line from the reference one.
 bool TemporalEndpointsSwapped(const Segment2d& reference, const Segment2d& current);
 
-class PointTransferModel final : public FeatureModel {
+// A reference endpoint matched with a current one (PointTransferModel's features).
+struct PointTransferMatch {
+  std::int64_t id;
+  int endpoint;         // reference endpoint k
+  int reference_point;  // index into the reference points (2 * line + k)
+  int current_line;     // index into the current lines
+  int current_endpoint;
+};
+
+class PointTransferModel final : public MatchedFeatureModel<PointTransferMatch> {
  public:
   explicit PointTransferModel(const PointTransferOptions& options);
 
   void Reset(const StereoRig& rig) override;
   int SetReference(const StereoFrame& frame) override;
   int SetCurrent(const StereoFrame& frame) override;
-  int NumFeatures() const override { return static_cast<int>(matches_.size()); }
-  int CurrentStereoFeatures() const override { return current_stereo_; }
   bool Evaluate(int index, const Rigid3d& cam_from_ref, bool with_covariance,
                 FeatureBlock* block) const override;
 
-  // The line id and the reference endpoint (0 or 1) of feature `index`.
-  std::int64_t FeatureId(int index) const { return matches_[index].id; }
+  // The reference endpoint (0 or 1) of feature `index` (its line's id: FeatureId).
   int FeatureEndpoint(int index) const { return matches_[index].endpoint; }
   const StereoPointGeometry& geometry() const { return geometry_; }
 
@@ -168,13 +174,6 @@ class PointTransferModel final : public FeatureModel {
     Segment2d left_segment;
     std::array<Eigen::Vector2d, 2> left;
     std::array<Eigen::Vector2d, 2> right;
-  };
-  struct Match {
-    std::int64_t id;
-    int endpoint;         // reference endpoint k
-    int reference_point;  // index into reference_points_ (2 * line + k)
-    int current_line;     // index into current_
-    int current_endpoint;
   };
 
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLinePoints>* out);
@@ -191,8 +190,6 @@ class PointTransferModel final : public FeatureModel {
   std::vector<ReferencePoint> reference_points_;  // 2 per reference line
   std::vector<char> reference_usable_;            // parallel to reference_points_
   std::vector<StereoLinePoints> current_;
-  std::vector<Match> matches_;
-  int current_stereo_ = 0;
   // Scratch for CollectStereoLines, kept to avoid allocation per frame.
   std::vector<LineObservation> left_sorted_, right_sorted_;
 };

@@ -281,16 +281,12 @@ TEST(PointTransferModel, FixedNoiseIsDiagonal) {
 TEST(PointTransferModel, SkipsMonocularAndShortSegments) {
   TinyScene scene;
   PointTransferModel model(PointTransferOptions{});
-  model.Reset(scene.rig);
   StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(SomeMotion());
   ref.right.erase(ref.right.begin());                          // line 10: left only
   cur.left[2].segment << 100.0, 100.0, 102.0, 101.0;          // line 16: too short now
   std::reverse(cur.right.begin(), cur.right.end());            // order of observations is free
-  EXPECT_EQ(model.SetReference(ref), 6);
-  EXPECT_EQ(model.SetCurrent(cur), 4);
-  EXPECT_EQ(model.CurrentStereoFeatures(), 6);
-  EXPECT_EQ(model.FeatureId(0), 13);
-  EXPECT_EQ(model.FeatureId(3), 19);
+  // Two endpoints per line.
+  EXPECT_EQ(Associate(model, scene.rig, ref, cur), (Association{6, 4, 6, {13, 13, 19, 19}}));
 }
 
 TEST(PointTransferModel, OptionErrorsNameTheKey) {
