@@ -38,14 +38,14 @@ struct DetectionOptions {
   double lsd_scale = 0.6;
   // LSD's refinement (OpenCV's LSD_REFINE_STD: arcs split into straight pieces) or none.
   bool lsd_refine = true;
-  // LSD's other parameters (von Gioi et al. 2010; OpenCV's names and defaults, except
-  // sigma_scale, OpenCV's 0.6): the Gaussian filter's sigma is lsd_sigma_scale / lsd_scale
-  // (0.5: 0.83 px at scale 0.6, which keeps edges 2-3 px apart apart a little better; +0.5-1.4
-  // points of recall, docs/frontend.md); a pixel joins a line-support region when its
+  // LSD's other parameters (von Gioi et al. 2010; OpenCV's names and defaults): the Gaussian
+  // filter's sigma is lsd_sigma_scale / lsd_scale (sigma_scale 0.5 gained 0.6 points of recall
+  // on the rendered sequences but lost the KITTI excerpt's tracking test: docs/frontend.md); a
+  // pixel joins a line-support region when its
   // level-line angle is within lsd_angle_deg of the region's; a region is a segment when
   // -log10(NFA) > lsd_log_eps; regions whose rectangle holds under lsd_density of aligned
   // pixels are cut down.
-  double lsd_sigma_scale = 0.5;
+  double lsd_sigma_scale = 0.6;
   double lsd_angle_deg = 22.5;
   double lsd_log_eps = 0.0;
   double lsd_density = 0.7;
