@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iterator>
 
+#include "frontend/image_sampling.h"
+
 namespace slt {
 namespace {
 
@@ -117,6 +119,41 @@ PairVerdict JudgeStereoPair(const ProjectedGroundTruth& left_truth, const Projec
   Intersect(under_left, under_right, common);
   if (!common->empty()) return PairVerdict::kCorrect;
   return under_left.empty() && under_right.empty() ? PairVerdict::kUnjudged : PairVerdict::kWrong;
+}
+
+EdgeStep MeasureEdgeStep(const cv::Mat& noise_free_grey, const Segment2d& segment) {
+  EdgeStep result;
+  const Eigen::Vector2d a = segment.head<2>(), b = segment.tail<2>();
+  const double length = (b - a).norm();
+  if (length < 1e-9) return result;
+  const Eigen::Vector2d d = (b - a) / length, n(-d.y(), d.x());
+  std::vector<double> steps;
+  double level = 0.0;
+  for (double t = 3.0; t <= length - 3.0; t += 2.0) {
+    const Eigen::Vector2d plus = a + t * d + 2.0 * n, minus = a + t * d - 2.0 * n;
+    const float i_plus = SampleBilinear<uchar>(noise_free_grey, plus.x(), plus.y());
+    const float i_minus = SampleBilinear<uchar>(noise_free_grey, minus.x(), minus.y());
+    steps.push_back(std::abs(i_plus - i_minus));
+    level += 0.5 * (i_plus + i_minus);
+  }
+  if (steps.empty()) return result;
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  result.step = steps[steps.size() / 2];
+  result.level = level / steps.size();
+  return result;
+}
+
+std::vector<LineObservation> PhotometricallyVisible(const std::vector<LineObservation>& visible,
+                                                    const cv::Mat& noise_free_grey, const ImageConfig& images,
+                                                    double min_noise_multiples) {
+  std::vector<LineObservation> out;
+  for (const LineObservation& o : visible) {
+    const EdgeStep e = MeasureEdgeStep(noise_free_grey, o.segment);
+    // The noise model of render/image_formation.h at the edge's grey level.
+    const double sigma = std::sqrt(images.read_noise * images.read_noise + images.shot_noise * std::max(0.0, e.level));
+    if (e.step >= min_noise_multiples * std::sqrt(2.0) * sigma) out.push_back(o);
+  }
+  return out;
 }
 
 void ScoreDetections(const ProjectedGroundTruth& projected, const std::vector<LineObservation>& visible,

@@ -90,6 +90,28 @@ struct DetectionScore {
   double EndpointRms() const { return endpoints ? std::sqrt(endpoint_sq_sum / endpoints) : 0.0; }
 };
 
+// Photometric visibility of the ground truth (docs/frontend.md, "Which segments are visible").
+// The simulator's visible segments are geometric: in view and not occluded. An edge between two
+// surfaces of nearly the same grey level is geometrically visible but not in the image. The
+// step across a segment is measured on the *noise-free* image (the same rendering without
+// sensor noise: exposure, vignetting and defocus blur applied) as the median over places every
+// 2 px along it (3 px clear of its ends) of |I(x + 2n) - I(x - 2n)| (bilinear), with n its unit
+// normal: at least half its length has that step. The segment is photometrically visible when
+//   step >= min_noise_multiples * sqrt(2) * sigma(level),
+// sigma(level) = sqrt(read_noise^2 + shot_noise * level) the image noise at the mean grey level
+// of the two sides (render/image_formation.h), sqrt(2) sigma the noise of the difference of two
+// pixels: with min_noise_multiples 1, the step is above the noise of the difference it is
+// measured by.
+struct EdgeStep {
+  double step = 0.0;   // median |I(x + 2n) - I(x - 2n)|, grey levels
+  double level = 0.0;  // mean of I(x + 2n) and I(x - 2n), grey levels
+};
+EdgeStep MeasureEdgeStep(const cv::Mat& noise_free_grey, const Segment2d& segment);
+// The segments of `visible` that are photometrically visible in `noise_free_grey` (above).
+std::vector<LineObservation> PhotometricallyVisible(const std::vector<LineObservation>& visible,
+                                                    const cv::Mat& noise_free_grey, const ImageConfig& images,
+                                                    double min_noise_multiples = 1.0);
+
 // Scores one image's detections against its visible ground truth (`visible`: the noise-free,
 // clipped and occlusion-aware observations of the simulator; ids index the lines of
 // `projected`).

@@ -5,7 +5,8 @@
 //
 //   frontend_benchmark [--config=frontend.json] [--benchmark_repetitions=3]
 //
-// --config (docs/frontend.md's options) replaces the default options in the frame benchmarks.
+// --config (docs/frontend.md's options) replaces the default options in the frame benchmarks
+// and the detection options of BM_DetectOneImage.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -54,7 +55,7 @@ const Pairs& RenderedPairs() {
 
 void BM_DetectOneImage(benchmark::State& state) {
   const LineDetectorType type = static_cast<LineDetectorType>(state.range(0));
-  DetectionOptions options;
+  DetectionOptions options = BenchmarkOptions().detection;  // --config's, each detector in turn
   options.detector = type;
   const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
   const cv::Mat& image = RenderedPairs().images[0][0];

@@ -19,11 +19,17 @@ const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
           .Field("lsd_quant", &D::lsd_quant, InRange(0.1, 10.0), "LSD: gradient quantisation bound (OpenCV's quant)")
           .Field("lsd_scale", &D::lsd_scale, InRange(0.1, 1.0), "LSD: image scale it works on (OpenCV's scale)")
           .Field("lsd_refine", &D::lsd_refine, "LSD: split curved regions into straight pieces (LSD_REFINE_STD)")
+          .Field("lsd_sigma_scale", &D::lsd_sigma_scale, InRange(0.1, 5.0), "LSD: Gaussian sigma = this / lsd_scale (OpenCV's sigma_scale)")
+          .Field("lsd_angle_deg", &D::lsd_angle_deg, InRange(1.0, 90.0), "LSD: level-line angle tolerance, deg (OpenCV's ang_th)")
+          .Field("lsd_log_eps", &D::lsd_log_eps, InRange(-10.0, 10.0), "LSD: detection threshold -log10(NFA) (OpenCV's log_eps)")
+          .Field("lsd_density", &D::lsd_density, InRange(0.0, 1.0), "LSD: least density of aligned points in a rectangle (OpenCV's density_th)")
           .Field("snap_detections", &D::snap_detections, "move detected segments onto the edge by the tracking snap")
           .Field("min_length_px", &D::min_length_px, InRange(2.0, 1e4), "shortest segment kept, px")
           .Field("merge_angle_deg", &D::merge_angle_deg, InRange(0.0, 45.0), "collinear merge: largest angle, deg")
           .Field("merge_distance_px", &D::merge_distance_px, AtLeast(0.0), "collinear merge: largest endpoint distance to the other line, px")
           .Field("merge_gap_px", &D::merge_gap_px, AtLeast(0.0), "collinear merge: largest gap along the line, px")
+          .Field("merge_same_polarity", &D::merge_same_polarity, "collinear merge: only fragments with the same brighter side")
+          .Field("parallel_edge_px", &D::parallel_edge_px, InRange(0.0, 10.0), "second edge searched this far beside each snapped detection, px (0 = off)")
           .Field("min_contrast", &D::min_contrast, AtLeast(0.0), "smallest grey-level difference between the two sides");
   return schema;
 }

@@ -38,6 +38,17 @@ struct DetectionOptions {
   double lsd_scale = 0.6;
   // LSD's refinement (OpenCV's LSD_REFINE_STD: arcs split into straight pieces) or none.
   bool lsd_refine = true;
+  // LSD's other parameters (von Gioi et al. 2010; OpenCV's names and defaults): the Gaussian
+  // filter's sigma is lsd_sigma_scale / lsd_scale (sigma_scale 0.5 gained 0.6 points of recall
+  // on the rendered sequences but lost the KITTI excerpt's tracking test: docs/frontend.md); a
+  // pixel joins a line-support region when its
+  // level-line angle is within lsd_angle_deg of the region's; a region is a segment when
+  // -log10(NFA) > lsd_log_eps; regions whose rectangle holds under lsd_density of aligned
+  // pixels are cut down.
+  double lsd_sigma_scale = 0.6;
+  double lsd_angle_deg = 22.5;
+  double lsd_log_eps = 0.0;
+  double lsd_density = 0.7;
   // Move each detected segment onto the image's edge by the tracker's edge snap
   // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not
   // when the snap is off (tracking.snap_radius_px 0).
@@ -50,6 +61,16 @@ struct DetectionOptions {
   double merge_angle_deg = 2.0;
   double merge_distance_px = 1.5;
   double merge_gap_px = 6.0;
+  // Merge only fragments with the same brighter side (each oriented by its gradient first): a
+  // merge across a change of polarity makes a segment whose contrast averages out and which
+  // the contrast filter and the snap then drop (docs/frontend.md, the audit of the misses).
+  bool merge_same_polarity = true;
+  // Look for a second, parallel edge this far (px) on either side of each snapped detection
+  // (parallel_edges.h: the two edges of a thin board, 2-4 px apart, which a detector on the
+  // smoothed image finds as one); 0 = off. Only with snap_detections. Off by default: at 3 px
+  // it gains 1.3 (room) and 4.8 (corridor) points of recall but costs ~1.3 ms in the
+  // new-reference frame, at the 30-ms budget (docs/frontend.md).
+  double parallel_edge_px = 0.0;
   // Mean grey-level difference between the two sides of a segment (sampled 2 px off it) below
   // which it is dropped: without a brighter side it has no orientation to match by.
   double min_contrast = 8.0;

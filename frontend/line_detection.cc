@@ -19,12 +19,12 @@ Segment2d ToSegment(const cv::Vec4f& v) { return Segment2d(v[0], v[1], v[2], v[3
 
 class LsdDetector : public LineDetector {
  public:
-  // OpenCV's sigma_scale 0.6 and ang_th 22.5 deg; the working scale, the refinement and the
-  // gradient quantisation bound `quant` (which sets the smallest gradient magnitude LSD
-  // considers) from DetectionOptions (lsd_scale, lsd_refine, lsd_quant).
+  // Every parameter from DetectionOptions (lsd_*; the gradient quantisation bound `quant` sets
+  // the smallest gradient magnitude LSD considers); OpenCV's 1024 bins of its pseudo-ordering.
   explicit LsdDetector(const DetectionOptions& options)
       : lsd_(cv::createLineSegmentDetector(options.lsd_refine ? cv::LSD_REFINE_STD : cv::LSD_REFINE_NONE,
-                                           options.lsd_scale, 0.6, options.lsd_quant)) {}
+                                           options.lsd_scale, options.lsd_sigma_scale, options.lsd_quant,
+                                           options.lsd_angle_deg, options.lsd_log_eps, options.lsd_density)) {}
   void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) override {
     lines_.clear();
     lsd_->detect(grey, lines_);
@@ -151,8 +151,11 @@ std::unique_ptr<LineDetector> MakeLineDetector(const DetectionOptions& options) 
   throw std::invalid_argument("unknown line detector");
 }
 
-void MergeCollinearSegments(const DetectionOptions& options, std::vector<Segment2d>* segments) {
+void MergeCollinearSegments(const DetectionOptions& options, std::vector<Segment2d>* segments, bool oriented) {
   const double max_angle = options.merge_angle_deg * M_PI / 180.0;
+  // Directions as angles in [0, period): modulo pi for undirected segments, 2 pi for oriented
+  // ones (opposite polarity: opposite directions, more than max_angle apart).
+  const double period = oriented ? 2.0 * M_PI : M_PI;
   std::vector<double> angle;
   std::vector<int> order;
   std::vector<char> gone;
@@ -163,22 +166,22 @@ void MergeCollinearSegments(const DetectionOptions& options, std::vector<Segment
     for (int i = 0; i < n; ++i) {
       const Segment2d& s = (*segments)[i];
       double a = std::atan2(s[3] - s[1], s[2] - s[0]);
-      if (a < 0) a += M_PI;
-      if (a >= M_PI) a -= M_PI;
+      if (a < 0) a += period;
+      if (a >= period) a -= period;
       angle[i] = a;
     }
     order.resize(n);
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int x, int y) { return angle[x] < angle[y]; });
     gone.assign(n, 0);
-    // Pairs within max_angle are neighbours in the sorted order (with wrap-around at pi).
+    // Pairs within max_angle are neighbours in the sorted order (with wrap-around at period).
     for (int oi = 0; oi < n; ++oi) {
       const int i = order[oi];
       if (gone[i]) continue;
       for (int step = 1; step < n; ++step) {
         const int j = order[(oi + step) % n];
         double diff = angle[j] - angle[i];
-        if (oi + step >= n) diff += M_PI;
+        if (oi + step >= n) diff += period;
         if (diff > max_angle) break;
         if (gone[j]) continue;
         Segment2d& si = (*segments)[i];
@@ -257,7 +260,14 @@ std::vector<ImageLine> DetectLines(LineDetector& detector, const DetectionOption
   if (grey.type() != CV_8UC1) throw std::invalid_argument("DetectLines: expected an 8-bit grey image");
   std::vector<Segment2d> segments;
   detector.Detect(grey, &segments);
-  MergeCollinearSegments(options, &segments);
+  if (options.merge_same_polarity) {
+    // Each fragment oriented by its own gradient first, so that only fragments with the same
+    // brighter side merge: an edge whose brighter side changes along it (a shelf's front
+    // edge under books lighter and darker than the shelf) stays apart in pieces of one
+    // polarity instead of one segment whose contrast averages out.
+    for (Segment2d& s : segments) OrientByGradient(grey, &s);
+  }
+  MergeCollinearSegments(options, &segments, options.merge_same_polarity);
   std::vector<ImageLine> lines;
   lines.reserve(segments.size());
   const double min_sq = options.min_length_px * options.min_length_px;

@@ -35,14 +35,18 @@ class LineDetector {
 std::unique_ptr<LineDetector> MakeLineDetector(const DetectionOptions& options);
 
 // Merges collinear fragments (options.merge_*) in place: the merged segment spans the extreme
-// projections of both onto the longer one's line. Repeats until nothing merges.
-void MergeCollinearSegments(const DetectionOptions& options, std::vector<Segment2d>* segments);
+// projections of both onto the longer one's line. Repeats until nothing merges. `oriented`:
+// the segments are oriented (OrientByGradient) and only those pointing the same way merge
+// (the same brighter side); else directions are compared modulo 180 deg.
+void MergeCollinearSegments(const DetectionOptions& options, std::vector<Segment2d>* segments, bool oriented = false);
 
 // Orients the segment (swapping its endpoints when needed) and returns its contrast (>= 0),
 // sampled every 2 px along it.
 float OrientByGradient(const cv::Mat& grey, Segment2d* segment);
 
-// Detect, merge, drop short and low-contrast segments, orient: what the front end matches.
+// Detect, (orient and) merge, drop short and low-contrast segments, orient: what the front end
+// matches. With options.merge_same_polarity the detector's fragments are oriented before the
+// merge and only fragments of the same polarity merge.
 std::vector<ImageLine> DetectLines(LineDetector& detector, const DetectionOptions& options, const cv::Mat& grey);
 
 // Clips a segment to [0, width-1] x [0, height-1]; false when nothing is inside.

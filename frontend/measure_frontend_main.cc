@@ -17,7 +17,9 @@
 //    fraction of the visible ground-truth segments at least 40 px long that a detection lies on
 //    (within 2 px and 2 deg, frontend_audit.h), precision = the fraction of detections that lie
 //    on some ground-truth segment, the RMS perpendicular endpoint error of those, and the
-//    single-thread time per image.
+//    single-thread time per image; and the recall of those ground-truth segments that are
+//    photometrically visible (frontend_audit.h: the step across them in the same image rendered
+//    without sensor noise at least the noise of a two-pixel difference).
 // 2. sequences.md: the front end paired with the tracker over each whole sequence (the paper
 //    scene with its own disparity range and match verification, PaperSceneOptions): stereo
 //    matches and temporal tracks correct (same 3-D segment; frontend_audit.h; within 2 px and
@@ -42,6 +44,7 @@
 #include "evaluation/metrics.h"
 #include "frontend/frontend_audit.h"
 #include "frontend/image_tracking.h"
+#include "frontend/parallel_edges.h"
 #include "render/sequence_renderer.h"
 
 namespace slt {
@@ -98,25 +101,35 @@ Table MarkdownTable(const std::vector<std::string>& titles, size_t left) {
 std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, const FrontEndOptions& front_end_options) {
   const DetectionOptions& base = front_end_options.detection;
   Table table = MarkdownTable({"scene", "detector", "images", "GT segments >= 40 px", "recall", "precision",
-                               "endpoint RMS, px", "segments per image", "ms per image"},
+                               "endpoint RMS, px", "segments per image", "ms per image",
+                               "of those, photometrically visible", "recall of those"},
                               2);
   for (const MeasuredScene& scene : scenes) {
     const SimulationConfig& config = scene.config;
     const SimulatedSequence& sequence = scene.sequence;
     const SequenceRenderer renderer(sequence, config);
+    // The same images without sensor noise, for the photometric visibility of the ground truth.
+    SimulationConfig noise_free = config;
+    noise_free.images.read_noise = 0.0;
+    noise_free.images.shot_noise = 0.0;
+    const SequenceRenderer noise_free_renderer(sequence, noise_free);
     std::vector<cv::Mat> images;
     std::vector<std::pair<int, int>> which;
+    std::vector<std::vector<LineObservation>> photometric;
     for (int k = 0; k < config.frames; k += step) {
       for (int c = 0; c < 2; ++c) {
         images.push_back(renderer.Image(k, c));
         which.emplace_back(k, c);
+        const StereoFrame& frame = sequence.sequence.frames[k];
+        photometric.push_back(PhotometricallyVisible(c == 0 ? frame.left : frame.right, noise_free_renderer.Image(k, c),
+                                                     config.images));
       }
     }
     for (const auto& [type, name] : LineDetectorNames()) {
       DetectionOptions options = base;  // --config's detection options, each detector in turn
       options.detector = type;
       const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
-      DetectionScore score;
+      DetectionScore score, photometric_score;
       const TrackingOptions tracking = front_end_options.tracking;
       const LineFlowTracker flow(tracking);
       ImagePyramid pyramid;
@@ -131,17 +144,21 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
           flow.BuildPyramid(images[i], &pyramid, 0);
           score.seconds -= std::chrono::duration<double>(Clock::now() - t1).count();
           SnapDetections(tracking, options.min_length_px, pyramid[1], &lines, &snap);
+          AddParallelEdges(options, tracking, images[i], pyramid[1], &lines, &snap);
         }
         score.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
         const auto [k, c] = which[i];
         const StereoFrame& frame = sequence.sequence.frames[k];
-        ScoreDetections(ProjectedGroundTruthAt(sequence, k, c), c == 0 ? frame.left : frame.right, lines, 40.0, &score);
+        const ProjectedGroundTruth projected = ProjectedGroundTruthAt(sequence, k, c);
+        ScoreDetections(projected, c == 0 ? frame.left : frame.right, lines, 40.0, &score);
+        ScoreDetections(projected, photometric[i], lines, 40.0, &photometric_score);
       }
       table.AddRow({scene.name, name, std::to_string(score.images), std::to_string(score.gt_segments),
                     StringPrintf("%.3f", score.Recall()), StringPrintf("%.3f", score.Precision()),
                     StringPrintf("%.2f", score.EndpointRms()),
                     StringPrintf("%.0f", static_cast<double>(score.detections) / score.images),
-                    StringPrintf("%.1f", 1e3 * score.seconds / score.images)});
+                    StringPrintf("%.1f", 1e3 * score.seconds / score.images),
+                    std::to_string(photometric_score.gt_segments), StringPrintf("%.3f", photometric_score.Recall())});
       std::fprintf(stderr, "measure_frontend: %s, %s: recall %.3f\n", scene.name.c_str(), name, score.Recall());
     }
   }
@@ -275,8 +292,13 @@ int main(int argc, char** argv) {
     const FrontEndOptions options =
         config_path.empty() ? FrontEndOptions() : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
     const std::vector<MeasuredScene> scenes = Scenes(frames, only_scene);
-    const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s`.\n\n", frames,
-                                      step, method.c_str());
+    // The options measured, when not the defaults: the config's file name and its content.
+    const std::string config_note =
+        config_path.empty() ? ""
+                            : " --config " + std::filesystem::path(config_path).filename().string() + "` with `" +
+                                  ReadJsonFile(config_path).dump();
+    const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s`.\n\n",
+                                            frames, step, method.c_str(), config_note.c_str());
     const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, step, options);
     const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, method, options);
     std::printf("%s\n%s", detectors.c_str(), sequences.c_str());

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "frontend/line_motion.h"
+#include "frontend/parallel_edges.h"
 
 namespace slt {
 namespace {
@@ -182,6 +183,7 @@ void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right,
   if (options_.detection.snap_detections) {
     for (int c = 0; c < 2; ++c) {
       SnapDetections(options_.tracking, options_.detection.min_length_px, current_[c][1], &detections_[c], &snap_);
+      AddParallelEdges(options_.detection, options_.tracking, c == 0 ? left : right, current_[c][1], &detections_[c], &snap_);
     }
   }
   if (!stats_.rematch) {
