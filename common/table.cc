@@ -36,12 +36,25 @@ std::string Join(const std::vector<std::string>& cells, std::string (*escape)(co
 }  // namespace
 
 std::string StringPrintf(const char* format, ...) {
-  char buffer[1024];
-  va_list args;
+  // Most cells fit the stack buffer; longer text is printed again at its measured length.
+  char buffer[256];
+  va_list args, again;
   va_start(args, format);
-  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_copy(again, args);
+  const int length = std::vsnprintf(buffer, sizeof(buffer), format, args);
   va_end(args);
-  return buffer;
+  if (length < 0) {
+    va_end(again);
+    throw std::invalid_argument(std::string("StringPrintf: cannot format '") + format + "'");
+  }
+  if (static_cast<size_t>(length) < sizeof(buffer)) {
+    va_end(again);
+    return std::string(buffer, static_cast<size_t>(length));
+  }
+  std::string text(static_cast<size_t>(length), '\0');
+  std::vsnprintf(text.data(), text.size() + 1, format, again);
+  va_end(again);
+  return text;
 }
 
 void Table::AddRow(std::vector<std::string> cells, bool rule_before) {

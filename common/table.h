@@ -18,7 +18,7 @@
 
 namespace slt {
 
-// printf-style text of a cell ("%.3f"); at most 1023 characters.
+// printf-style text of a cell ("%.3f"), of any length.
 std::string StringPrintf(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
 struct Table {

@@ -22,6 +22,14 @@ TEST(StringPrintf, FormatsLikePrintf) {
   EXPECT_EQ(StringPrintf("%.4g", 12345.0), "1.234e+04");
 }
 
+// measure_frontend's header holds a whole config file's JSON: no length limit, nothing cut.
+TEST(StringPrintf, KeepsTextLongerThanAnyFixedBuffer) {
+  const std::string long_text(5000, 'x');
+  const std::string printed = StringPrintf("`%s`", long_text.c_str());
+  EXPECT_EQ(printed.size(), 5002u);
+  EXPECT_EQ(printed, "`" + long_text + "`");
+}
+
 TEST(Table, MarkdownPrefixesGroupTitlesAndEscapesPipes) {
   EXPECT_EQ(GroupedTable().Markdown(),
             "| Method | noise_px | Rot \\| err_deg mean | 95 % interval |\n"
