@@ -26,8 +26,9 @@
 //          least squares to the edge points (twice, dropping points over inlier_px from it),
 //          and the refitted endpoints are projected onto it. Lost when fewer than
 //          max(3, snap_min_fraction M) edge points remain, or when the standard error of the
-//          fitted direction, sigma = rms / sqrt(sum_m (t_m - mean t)^2) over the edge points
-//          (residual rms across the line, positions t along it), exceeds max_angle_sigma_deg. Frame-to-frame flow alone integrates
+//          fitted direction, sigma = rms / sqrt(sum_m (t_m - mean t)^2) over the K edge points
+//          (rms = sqrt(sum_m r_m^2 / (K - 2)) of the residuals r across the line, positions t
+//          along it), exceeds max_angle_sigma_deg. Frame-to-frame flow alone integrates
 //          its errors (a track drifts off its edge by ~2 px over 20-100 frames, measured in
 //          docs/frontend.md); the snap measures the line in the current image each frame.
 #pragma once

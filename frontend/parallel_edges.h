@@ -4,9 +4,10 @@
 // finds one line between or on the stronger of them, and the snap (line_tracking.h) places it
 // on that one; the other edge is not found.
 //
-// For every snapped detection s, with unit normal n, the segment s + o n for o = +-shift_px is
-// snapped onto the edge there (SnapSegmentToEdges: the strongest gradient within the snap
-// radius of the polarity found at its place). The result is a new line when it is
+// For every snapped detection s, with unit normal n, the segment s + o n for
+// o = +-options.parallel_edge_px is snapped onto the edge there (SnapSegmentToEdges: the
+// strongest gradient within the snap radius of the polarity found at its place). The result is
+// a new line when it is
 //   parallel to s (within options.merge_angle_deg),
 //   a distinct edge: not within options.merge_distance_px (both endpoints) of any detection's
 //   line nor of a line added before, at the same angle, and
