@@ -41,10 +41,11 @@ struct DetectionOptions {
   // LSD's other parameters (von Gioi et al. 2010; OpenCV's names and defaults): the Gaussian
   // filter's sigma is lsd_sigma_scale / lsd_scale (sigma_scale 0.5 gained 0.6 points of recall
   // on the rendered sequences but lost the KITTI excerpt's tracking test: docs/frontend.md); a
-  // pixel joins a line-support region when its
-  // level-line angle is within lsd_angle_deg of the region's; a region is a segment when
-  // -log10(NFA) > lsd_log_eps; regions whose rectangle holds under lsd_density of aligned
-  // pixels are cut down.
+  // pixel joins a line-support region when its level-line angle is within lsd_angle_deg of the
+  // region's; with lsd_refine, regions whose rectangle holds under lsd_density of aligned pixels
+  // are cut down. lsd_log_eps (a segment when -log10(NFA) > lsd_log_eps) has no effect here:
+  // OpenCV computes the NFA only in its advanced refinement (LSD_REFINE_ADV), which lsd_refine
+  // never selects (docs/frontend.md: log_eps +-1 changed nothing).
   double lsd_sigma_scale = 0.6;
   double lsd_angle_deg = 22.5;
   double lsd_log_eps = 0.0;
