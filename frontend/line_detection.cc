@@ -256,6 +256,13 @@ bool ClipSegmentToImage(int width, int height, Segment2d* segment) {
   return true;
 }
 
+bool LiesAlong(const Segment2d& line, const Segment2d& segment, double cos_max_angle, double max_distance_px) {
+  const Eigen::Vector2d p = line.head<2>(), d = (line.tail<2>() - p).normalized(), n(-d.y(), d.x());
+  const Eigen::Vector2d e = (segment.tail<2>() - segment.head<2>()).normalized();
+  return std::abs(d.dot(e)) >= cos_max_angle && std::abs(n.dot(segment.head<2>() - p)) <= max_distance_px &&
+         std::abs(n.dot(segment.tail<2>() - p)) <= max_distance_px;
+}
+
 std::vector<ImageLine> DetectLines(LineDetector& detector, const DetectionOptions& options, const cv::Mat& grey) {
   if (grey.type() != CV_8UC1) throw std::invalid_argument("DetectLines: expected an 8-bit grey image");
   std::vector<Segment2d> segments;

@@ -52,4 +52,9 @@ std::vector<ImageLine> DetectLines(LineDetector& detector, const DetectionOption
 // Clips a segment to [0, width-1] x [0, height-1]; false when nothing is inside.
 bool ClipSegmentToImage(int width, int height, Segment2d* segment);
 
+// Whether `segment` lies along the line through `line`: |cos| of the angle between their
+// directions at least cos_max_angle (either way round) and both of its endpoints within
+// max_distance_px of that line. Its extent along the line is not compared.
+bool LiesAlong(const Segment2d& line, const Segment2d& segment, double cos_max_angle, double max_distance_px);
+
 }  // namespace slt

@@ -71,6 +71,18 @@ TEST(DetectLines, KeepsAnEdgeWhosePolarityChangesAsTwoSegments) {
   EXPECT_TRUE(on_edge(DetectLines(*detector, options, image)).empty());
 }
 
+TEST(LiesAlong, ComparesDirectionEitherWayRoundAndBothEndpointsDistanceToTheLine) {
+  const Segment2d line(0, 0, 100, 0);
+  const double cos_2deg = std::cos(2.0 * M_PI / 180.0);
+  // Beyond the line's own extent and pointing the other way: along it.
+  EXPECT_TRUE(LiesAlong(line, Segment2d(300, 1, 150, 1), cos_2deg, 1.5));
+  // One endpoint 2 px off (within the angle): not along it at 1.5 px.
+  EXPECT_FALSE(LiesAlong(line, Segment2d(150, 1, 300, 2), cos_2deg, 1.5));
+  EXPECT_TRUE(LiesAlong(line, Segment2d(150, 1, 300, 2), cos_2deg, 2.5));
+  // 3 deg off, endpoints within the distance: not along it.
+  EXPECT_FALSE(LiesAlong(line, Segment2d(0, -1, 38, 1), cos_2deg, 1.5));
+}
+
 // LSD's parameters come from the options (a config's detection.lsd_*, validated by key).
 TEST(MakeLineDetector, LsdTakesItsParametersFromTheOptions) {
   // A bar 3 px wide, brighter than its surroundings: two edges of opposite polarity.

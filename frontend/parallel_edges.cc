@@ -4,18 +4,6 @@
 #include <limits>
 
 namespace slt {
-namespace {
-
-// Whether `b` lies along `a`: directions within max_angle (either way), both of b's endpoints
-// within max_distance of a's line.
-bool Along(const Segment2d& a, const Segment2d& b, double cos_max_angle, double max_distance) {
-  const Eigen::Vector2d p = a.head<2>(), d = (a.tail<2>() - p).normalized(), n(-d.y(), d.x());
-  const Eigen::Vector2d e = (b.tail<2>() - b.head<2>()).normalized();
-  return std::abs(d.dot(e)) >= cos_max_angle && std::abs(n.dot(b.head<2>() - p)) <= max_distance &&
-         std::abs(n.dot(b.tail<2>() - p)) <= max_distance;
-}
-
-}  // namespace
 
 void AddParallelEdges(const DetectionOptions& options, const TrackingOptions& tracking, const cv::Mat& grey,
                       const cv::Mat& derivatives, std::vector<ImageLine>* lines, SnapWorkspace* workspace) {
@@ -35,10 +23,10 @@ void AddParallelEdges(const DetectionOptions& options, const TrackingOptions& tr
       line.segment << a + shift, b + shift;
       if (!SnapSegmentToEdges(tracking, derivatives, &line.segment, workspace)) continue;
       if ((line.segment.tail<2>() - line.segment.head<2>()).squaredNorm() < min_sq) continue;
-      if (!Along(source, line.segment, cos_max, std::numeric_limits<double>::infinity())) continue;
+      if (!LiesAlong(source, line.segment, cos_max, std::numeric_limits<double>::infinity())) continue;
       bool known = false;
       for (const ImageLine& other : *lines) {
-        if (Along(other.segment, line.segment, cos_max, options.merge_distance_px)) {
+        if (LiesAlong(other.segment, line.segment, cos_max, options.merge_distance_px)) {
           known = true;
           break;
         }

@@ -161,14 +161,8 @@ bool StereoFrontEnd::DuplicatesLiveLine(const Segment2d& segment, int c) const {
   const double length = (b - a).norm();
   for (const LiveLine& live : live_) {
     const Segment2d& s = c == 0 ? live.left : live.right;
-    const Eigen::Vector2d p = s.head<2>(), q = s.tail<2>();
-    const Eigen::Vector2d e = (q - p).normalized();
-    if (std::abs(d.dot(e)) < cos_max) continue;
-    const Eigen::Vector2d n(-e.y(), e.x());
-    if (std::abs(n.dot(a - p)) > options_.duplicate_distance_px || std::abs(n.dot(b - p)) > options_.duplicate_distance_px) {
-      continue;
-    }
-    const double t0 = d.dot(p - a), t1 = d.dot(q - a);
+    if (!LiesAlong(s, segment, cos_max, options_.duplicate_distance_px)) continue;
+    const double t0 = d.dot(s.head<2>() - a), t1 = d.dot(s.tail<2>() - a);
     if (std::max(t0, t1) > 0.0 && std::min(t0, t1) < length) return true;
   }
   return false;
