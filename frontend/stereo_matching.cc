@@ -143,7 +143,7 @@ double SegmentCrossCorrelation(const StereoGeometry& geometry, const cv::Mat& le
 }
 
 bool SeenInPreviousPair(const StereoRig& rig, const Rigid3d& previous_from_current, const Segment2d& left,
-                        const Segment2d& right, const cv::Mat* previous_derivatives, const TrackingOptions& snap,
+                        const Segment2d& right, const cv::Mat (&previous_derivatives)[2], const TrackingOptions& snap,
                         double max_distance_px, SnapWorkspace* workspace) {
   StereoLineMaps maps;
   if (!PredictStereoLineMotion(rig, previous_from_current, left, right, kMinStereoPlaneSine, &maps)) return false;

@@ -89,7 +89,7 @@ double SegmentCrossCorrelation(const StereoGeometry& geometry, const cv::Mat& le
 // the previous pair's pyramids (left, right). False also when the line cannot be placed (its
 // points not in front of both cameras, or a line in an epipolar plane: no depth to move it by).
 bool SeenInPreviousPair(const StereoRig& rig, const Rigid3d& previous_from_current, const Segment2d& left,
-                        const Segment2d& right, const cv::Mat* previous_derivatives, const TrackingOptions& snap,
+                        const Segment2d& right, const cv::Mat (&previous_derivatives)[2], const TrackingOptions& snap,
                         double max_distance_px, SnapWorkspace* workspace);
 
 class StereoMatcher {
