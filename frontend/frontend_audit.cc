@@ -151,7 +151,8 @@ std::vector<LineObservation> PhotometricallyVisible(const std::vector<LineObserv
     const EdgeStep e = MeasureEdgeStep(noise_free_grey, o.segment);
     // The noise model of render/image_formation.h at the edge's grey level.
     const double sigma = std::sqrt(images.read_noise * images.read_noise + images.shot_noise * std::max(0.0, e.level));
-    if (e.step >= min_noise_multiples * std::sqrt(2.0) * sigma) out.push_back(o);
+    // A step of zero is no edge even in a noise-free image (sigma 0).
+    if (e.step > 0.0 && e.step >= min_noise_multiples * std::sqrt(2.0) * sigma) out.push_back(o);
   }
   return out;
 }

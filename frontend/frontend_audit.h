@@ -101,7 +101,7 @@ struct DetectionScore {
 // sigma(level) = sqrt(read_noise^2 + shot_noise * level) the image noise at the mean grey level
 // of the two sides (render/image_formation.h), sqrt(2) sigma the noise of the difference of two
 // pixels: with min_noise_multiples 1, the step is above the noise of the difference it is
-// measured by.
+// measured by. A segment without any step (0) is never visible, also without image noise.
 struct EdgeStep {
   double step = 0.0;   // median |I(x + 2n) - I(x - 2n)|, grey levels
   double level = 0.0;  // mean of I(x + 2n) and I(x - 2n), grey levels

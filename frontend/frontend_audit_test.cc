@@ -40,6 +40,10 @@ TEST(PhotometricallyVisible, KeepsTheEdgesWhoseStepIsAboveTheNoiseOfATwoPixelDif
   images.read_noise = 0.5;
   images.shot_noise = 0.0;  // sqrt(2) sigma 0.7: 2 levels are well above
   EXPECT_EQ(PhotometricallyVisible(edge, TwoEdges(99, 101), images).size(), 1u);
+  // Without image noise (sigma 0) an edge with a step is visible, one without a step is not.
+  images.read_noise = 0.0;
+  EXPECT_EQ(PhotometricallyVisible(edge, TwoEdges(99, 101), images).size(), 1u);
+  EXPECT_EQ(PhotometricallyVisible(edge, TwoEdges(100, 100), images).size(), 0u);
 }
 
 }  // namespace
