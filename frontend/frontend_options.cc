@@ -21,7 +21,6 @@ const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
           .Field("lsd_refine", &D::lsd_refine, "LSD: split curved regions into straight pieces (LSD_REFINE_STD)")
           .Field("lsd_sigma_scale", &D::lsd_sigma_scale, InRange(0.1, 5.0), "LSD: Gaussian sigma = this / lsd_scale (OpenCV's sigma_scale)")
           .Field("lsd_angle_deg", &D::lsd_angle_deg, InRange(1.0, 90.0), "LSD: level-line angle tolerance, deg (OpenCV's ang_th)")
-          .Field("lsd_log_eps", &D::lsd_log_eps, InRange(-10.0, 10.0), "LSD: detection threshold -log10(NFA) (OpenCV's log_eps; no effect: OpenCV applies it only with LSD_REFINE_ADV, never selected here)")
           .Field("lsd_density", &D::lsd_density, InRange(0.0, 1.0), "LSD: least density of aligned points in a rectangle (OpenCV's density_th; only with lsd_refine)")
           .Field("snap_detections", &D::snap_detections, "move detected segments onto the edge by the tracking snap")
           .Field("min_length_px", &D::min_length_px, InRange(2.0, 1e4), "shortest segment kept, px")

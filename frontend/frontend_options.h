@@ -43,12 +43,11 @@ struct DetectionOptions {
   // on the rendered sequences but lost the KITTI excerpt's tracking test: docs/frontend.md); a
   // pixel joins a line-support region when its level-line angle is within lsd_angle_deg of the
   // region's; with lsd_refine, regions whose rectangle holds under lsd_density of aligned pixels
-  // are cut down. lsd_log_eps (a segment when -log10(NFA) > lsd_log_eps) has no effect here:
-  // OpenCV computes the NFA only in its advanced refinement (LSD_REFINE_ADV), which lsd_refine
-  // never selects (docs/frontend.md: log_eps +-1 changed nothing).
+  // are cut down. OpenCV's log_eps is not an option: it computes the NFA only in its advanced
+  // refinement (LSD_REFINE_ADV), which lsd_refine never selects, so it has no effect here
+  // (docs/frontend.md: log_eps +-1 changed nothing); OpenCV's default 0 is passed.
   double lsd_sigma_scale = 0.6;
   double lsd_angle_deg = 22.5;
-  double lsd_log_eps = 0.0;
   double lsd_density = 0.7;
   // Move each detected segment onto the image's edge by the tracker's edge snap
   // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not

@@ -24,7 +24,7 @@ class LsdDetector : public LineDetector {
   explicit LsdDetector(const DetectionOptions& options)
       : lsd_(cv::createLineSegmentDetector(options.lsd_refine ? cv::LSD_REFINE_STD : cv::LSD_REFINE_NONE,
                                            options.lsd_scale, options.lsd_sigma_scale, options.lsd_quant,
-                                           options.lsd_angle_deg, options.lsd_log_eps, options.lsd_density)) {}
+                                           options.lsd_angle_deg, /*log_eps=*/0.0, options.lsd_density)) {}
   void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) override {
     lines_.clear();
     lsd_->detect(grey, lines_);
