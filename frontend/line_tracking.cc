@@ -82,7 +82,7 @@ constexpr double kSnapEndMarginPx = 3.0;
 }  // namespace
 
 bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment,
-                        SnapWorkspace* workspace) {
+                        SnapWorkspace* workspace, double* direction_sigma_deg) {
   const Eigen::Vector2d a = segment->head<2>(), b = segment->tail<2>();
   const double length = (b - a).norm();
   if (length < 1e-6 || derivatives.type() != CV_16SC2) return false;
@@ -152,7 +152,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
     edge_points->resize(kept);
     if (kept < needed || !FitLine(*edge_points, nullptr, kept, &line)) return false;
   }
-  if (options.max_angle_sigma_deg > 0.0) {
+  if (direction_sigma_deg != nullptr) {
     // The fitted direction's standard error, sigma_theta = rms / sqrt(sum (t - mean t)^2): a
     // short segment or scattered edge points leave it undetermined.
     const Eigen::Vector2d dir(line.y(), -line.x());
@@ -165,8 +165,9 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
     }
     const double count = static_cast<double>(edge_points->size());
     const double spread = stt - st * st / count;
-    const double sigma = spread > 0.0 ? std::sqrt(residual_sq / std::max(1.0, count - 2.0) / spread) : std::numeric_limits<double>::infinity();
-    if (sigma * 180.0 / M_PI > options.max_angle_sigma_deg) return false;
+    const double sigma = spread > 0.0 ? std::sqrt(residual_sq / std::max(1.0, count - 2.0) / spread)
+                                      : std::numeric_limits<double>::infinity();
+    *direction_sigma_deg = sigma * 180.0 / M_PI;
   }
   const Eigen::Vector2d normal = line.head<2>();
   Eigen::Vector2d p = a - (normal.dot(a) + line.z()) * normal, q = b - (normal.dot(b) + line.z()) * normal;
@@ -202,14 +203,12 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
 void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
                     std::vector<ImageLine>* lines, SnapWorkspace* workspace) {
   if (options.snap_radius_px <= 0.0) return;  // the snap is off: detections stay as detected
-  // A tracked line's angle is measured once per frame from its own edge points; a detection's
-  // is checked where it is tracked (the direction test is the tracker's loss test).
-  TrackingOptions snap = options;
-  snap.max_angle_sigma_deg = 0.0;
+  // No direction test here: a detection's direction is checked where it is tracked (the test
+  // is the tracker's loss test, DirectionUndetermined).
   const double min_sq = min_length_px * min_length_px;
   size_t kept = 0;
   for (ImageLine& line : *lines) {
-    if (!SnapSegmentToEdges(snap, derivatives, &line.segment, workspace)) continue;
+    if (!SnapSegmentToEdges(options, derivatives, &line.segment, workspace)) continue;
     if ((line.segment.tail<2>() - line.segment.head<2>()).squaredNorm() < min_sq) continue;
     (*lines)[kept++] = line;
   }
@@ -345,8 +344,12 @@ void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* track
     }
     LineRefit fit = RefitTrackedLine(options_, old, k, data_, positions_, &ransac_, &result_);
     if (!fit.ok) continue;
-    if (options_.snap_radius_px > 0.0 && !SnapSegmentToEdges(options_, derivatives_, &fit.segment, &snap_)) {
-      continue;
+    if (options_.snap_radius_px > 0.0) {
+      double direction_sigma_deg = 0.0;
+      if (!SnapSegmentToEdges(options_, derivatives_, &fit.segment, &snap_, &direction_sigma_deg) ||
+          DirectionUndetermined(options_, direction_sigma_deg)) {
+        continue;
+      }
     }
     if (!ClipSegmentToImage(width, height, &fit.segment)) continue;
     if ((fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) continue;

@@ -25,7 +25,7 @@
 //          snap_min_gradient and not on the search's border. The line is refitted by total
 //          least squares to the edge points (twice, dropping points over inlier_px from it),
 //          and the refitted endpoints are projected onto it. Lost when fewer than
-//          max(3, snap_min_fraction M) edge points remain, or when the standard error of the
+//          max(3, snap_min_fraction M) edge points remain; a tracked line also when the standard error of the
 //          fitted direction, sigma = rms / sqrt(sum_m (t_m - mean t)^2) over the K edge points
 //          (rms = sqrt(sum_m r_m^2 / (K - 2)) of the residuals r across the line, positions t
 //          along it), exceeds max_angle_sigma_deg. Frame-to-frame flow alone integrates
@@ -65,8 +65,16 @@ struct SnapWorkspace {
   std::vector<float> profiles;
   std::vector<Eigen::Vector2d> edge_points;
 };
+// With `direction_sigma_deg`, also the standard error of the fitted line's direction, deg
+// (edge points' residual RMS over their spread along the line; infinite without spread), for
+// the tracker's loss test below.
 bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment,
-                        SnapWorkspace* workspace);
+                        SnapWorkspace* workspace, double* direction_sigma_deg = nullptr);
+// The tracker's direction test: a snapped line whose direction's standard error exceeds
+// options.max_angle_sigma_deg (0 = off) is lost.
+inline bool DirectionUndetermined(const TrackingOptions& options, double direction_sigma_deg) {
+  return options.max_angle_sigma_deg > 0.0 && direction_sigma_deg > options.max_angle_sigma_deg;
+}
 
 // Detected segments moved onto the image's edges by the snap above (a coarse, fast detection
 // made precise: DetectionOptions::snap_detections), in place; a segment the snap cannot place

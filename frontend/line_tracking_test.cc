@@ -139,7 +139,9 @@ TEST(SnapSegmentToEdges, LosesAShortSegmentWhoseDirectionTheEdgePointsDoNotDeter
     options.max_angle_sigma_deg = max_angle_sigma_deg;
     const Eigen::Vector2d a = p - half_length * d, b = p + half_length * d;
     Segment2d segment(a.x(), a.y(), b.x(), b.y());
-    return SnapSegmentToEdges(options, pyramid[1], &segment, &workspace);
+    double direction_sigma_deg = 0.0;
+    return SnapSegmentToEdges(options, pyramid[1], &segment, &workspace, &direction_sigma_deg) &&
+           !DirectionUndetermined(options, direction_sigma_deg);
   };
   EXPECT_TRUE(snapped(15.0, 0.0));  // without the test, both are kept
   EXPECT_TRUE(snapped(40.0, 0.0));

@@ -21,7 +21,11 @@ void AddParallelEdges(const DetectionOptions& options, const TrackingOptions& tr
       const Eigen::Vector2d shift = side * options.parallel_edge_px * n;
       ImageLine line;
       line.segment << a + shift, b + shift;
-      if (!SnapSegmentToEdges(tracking, derivatives, &line.segment, workspace)) continue;
+      double direction_sigma_deg = 0.0;
+      if (!SnapSegmentToEdges(tracking, derivatives, &line.segment, workspace, &direction_sigma_deg) ||
+          DirectionUndetermined(tracking, direction_sigma_deg)) {
+        continue;
+      }
       if ((line.segment.tail<2>() - line.segment.head<2>()).squaredNorm() < min_sq) continue;
       if (!LiesAlong(source, line.segment, cos_max, std::numeric_limits<double>::infinity())) continue;
       bool known = false;

@@ -150,7 +150,6 @@ bool SeenInPreviousPair(const StereoRig& rig, const Rigid3d& previous_from_curre
   // Where the line is, not how well its direction is determined (the tracker's test).
   TrackingOptions search = snap;
   search.snap_radius_px = max_distance_px;
-  search.max_angle_sigma_deg = 0.0;
   for (int c = 0; c < 2; ++c) {
     Segment2d mapped;
     if (!MapSegment(c == 0 ? maps.left : maps.right, c == 0 ? left : right, &mapped)) return false;
