@@ -79,19 +79,20 @@ constexpr float kScharrScale = 32.0f;
 constexpr int kMaxSnapRadius = 20;  // TrackingOptions' range
 constexpr double kSnapEndMarginPx = 3.0;
 
-// sign x the gradient across the unit normal `n` at x, grey levels per px.
-inline float GradientAcross(const cv::Mat& derivatives, const Eigen::Vector2d& x, const Eigen::Vector2d& n, float sign) {
+// The gradient (du, dv) projected on (gx, gy) (a unit normal pre-scaled by 1 / kScharrScale),
+// grey levels per px, at a sub-pixel position.
+inline float GradientAlong(const cv::Mat& derivatives, const Eigen::Vector2d& x, float gx, float gy) {
   const Eigen::Vector2f grad = SampleDerivative(derivatives, static_cast<float>(x.x()), static_cast<float>(x.y()));
-  return sign * static_cast<float>(n.x() * grad.x() + n.y() * grad.y()) / kScharrScale;
+  return gx * grad.x() + gy * grad.y();
 }
 
-// Whether x lies on an edge along the line of unit normal `n`: the gradient across it there (of
-// the polarity `sign`) is at least min_gradient and not below that 1 px to either side.
-inline bool OnEdge(const cv::Mat& derivatives, const Eigen::Vector2d& x, const Eigen::Vector2d& n, float sign,
-                   double min_gradient) {
-  const float g = GradientAcross(derivatives, x, n, sign);
-  return g >= min_gradient && g >= GradientAcross(derivatives, x - n, n, sign) &&
-         g >= GradientAcross(derivatives, x + n, n, sign);
+// Whether x lies on an edge: the gradient across it (projected on (gx, gy), of the polarity
+// `sign`) is at least min_gradient and not below that 1 px to either side along `step`.
+inline bool OnEdge(const cv::Mat& derivatives, const Eigen::Vector2d& x, const Eigen::Vector2d& step, float gx, float gy,
+                   float sign, double min_gradient) {
+  float g[3];
+  for (int o = -1; o <= 1; ++o) g[o + 1] = sign * GradientAlong(derivatives, x + o * step, gx, gy);
+  return g[1] >= min_gradient && g[1] >= g[0] && g[1] >= g[2];
 }
 
 }  // namespace
@@ -192,7 +193,9 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   // not below that 1 px to either side (a place whose search missed the edge because the
   // refitted line was off by more than the radius there counts, once the fit is right).
   const Eigen::Vector2d e = (q - p).normalized(), en(-e.y(), e.x());
-  const auto on_edge = [&](int m) { return OnEdge(derivatives, p + along(m) * e, en, sign, options.snap_min_gradient); };
+  const auto on_edge = [&](int m) {
+    return OnEdge(derivatives, p + along(m) * e, en, gx, gy, sign, options.snap_min_gradient);
+  };
   int first = 0, last = places - 1;
   while (first <= last && !on_edge(first)) ++first;
   while (last > first && !on_edge(last)) --last;
@@ -212,9 +215,10 @@ void ExtendAlongEdge(const TrackingOptions& options, const cv::Mat& derivatives,
   const double length = (b - a).norm();
   if (length < 1e-6) return;
   const Eigen::Vector2d d = (b - a) / length, n(-d.y(), d.x());
+  const float gx = static_cast<float>(n.x()) / kScharrScale, gy = static_cast<float>(n.y()) / kScharrScale;
   // The edge's polarity and strength: the gradient across the segment at its quarter points.
   float strength = 0.0f;
-  for (const double f : {0.25, 0.5, 0.75}) strength += GradientAcross(derivatives, a + f * (b - a), n, 1.0f) / 3.0f;
+  for (const double f : {0.25, 0.5, 0.75}) strength += GradientAlong(derivatives, a + f * (b - a), gx, gy) / 3.0f;
   const float sign = strength >= 0.0f ? 1.0f : -1.0f;
   // The edge continues where it has at least half that strength (image noise alone passes
   // snap_min_gradient here and there beyond an edge's end).
@@ -227,7 +231,7 @@ void ExtendAlongEdge(const TrackingOptions& options, const cv::Mat& derivatives,
   const auto grow = [&](const Eigen::Vector2d& end, const Eigen::Vector2d& out) {
     double reached = 0.0;
     for (double t = step; t <= options.extend_max_px && inside(end + t * out); t += step) {
-      if (!OnEdge(derivatives, end + (t - margin) * out, n, sign, min_gradient)) break;
+      if (!OnEdge(derivatives, end + (t - margin) * out, n, gx, gy, sign, min_gradient)) break;
       reached = t;
     }
     return Eigen::Vector2d(end + reached * out);
