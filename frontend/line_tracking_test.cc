@@ -191,9 +191,9 @@ TEST(ExtendAlongEdge, GrowsTheEndsAlongTheEdgeUpToItsEndsAndTheLimit) {
 }
 
 TEST(LineFlowTracker, KeepsATrackedSegmentAsLongAsItsEdge) {
-  // A static edge 120 px long, tracked from a 30-px piece of it: with the defaults the segment
-  // grows to the edge's extent over a few frames (the snap alone only trims: it would stay 30 px
-  // and, trimmed or shrunk by the flow's map, fall under tracking.min_length_px).
+  // A static edge 120 px long, tracked from a 30-px piece of it: with tracking.extend_max_px the
+  // segment grows to the edge's extent over a few frames (the snap alone only trims: it stays
+  // 30 px and, trimmed or shrunk by the flow's map, falls under tracking.min_length_px).
   // Image noise (4 grey levels, seeded) gives Lucas-Kanade texture to lock onto (on a noise-free
   // straight edge its points are ill-conditioned and dropped).
   const Eigen::Vector2d p(160.4, 121.7), d = Eigen::Vector2d(1.0, 0.35).normalized();
@@ -203,21 +203,30 @@ TEST(LineFlowTracker, KeepsATrackedSegmentAsLongAsItsEdge) {
   image.convertTo(image, CV_16SC1);
   image += noise;
   image.convertTo(image, CV_8UC1);
-  const TrackingOptions options;
-  LineFlowTracker tracker(options);
-  ImagePyramid pyramid;
-  tracker.BuildPyramid(image, &pyramid);
-  const Eigen::Vector2d a = p - 15.0 * d, b = p + 15.0 * d;
-  std::vector<Segment2d> segments = {Segment2d(a.x(), a.y(), b.x(), b.y())};
-  std::vector<char> ok;
-  for (int frame = 0; frame < 5; ++frame) {
-    tracker.Flow(pyramid, pyramid, segments);
-    tracker.Refit(image.cols, image.rows, &segments, &ok);
-    ASSERT_TRUE(ok[0]) << frame;
-  }
-  EXPECT_LT(DistanceToLine(segments[0], p, d), 0.1);
-  EXPECT_NEAR(d.dot(segments[0].head<2>() - p), -60.0, 3.0);
-  EXPECT_NEAR(d.dot(segments[0].tail<2>() - p), 60.0, 3.0);
+  const auto track = [&](double extend_max_px) {
+    TrackingOptions options;
+    options.extend_max_px = extend_max_px;
+    LineFlowTracker tracker(options);
+    ImagePyramid pyramid;
+    tracker.BuildPyramid(image, &pyramid);
+    const Eigen::Vector2d a = p - 15.0 * d, b = p + 15.0 * d;
+    std::vector<Segment2d> segments = {Segment2d(a.x(), a.y(), b.x(), b.y())};
+    std::vector<char> ok;
+    for (int frame = 0; frame < 5; ++frame) {
+      tracker.Flow(pyramid, pyramid, segments);
+      tracker.Refit(image.cols, image.rows, &segments, &ok);
+      EXPECT_TRUE(ok[0]) << frame;
+    }
+    EXPECT_LT(DistanceToLine(segments[0], p, d), 0.1);
+    return Eigen::Vector2d(d.dot(segments[0].head<2>() - p), d.dot(segments[0].tail<2>() - p));
+  };
+  const Eigen::Vector2d grown = track(20.0);
+  EXPECT_NEAR(grown[0], -60.0, 3.0);
+  EXPECT_NEAR(grown[1], 60.0, 3.0);
+  // Off (the default), the segment keeps at most its 30 px.
+  const Eigen::Vector2d kept = track(0.0);
+  EXPECT_GE(kept[0], -15.5);
+  EXPECT_LE(kept[1], 15.5);
 }
 
 TEST(SnapDetections, MovesDetectionsOntoTheEdgeAndDropsThoseItCannotPlace) {
