@@ -68,7 +68,7 @@ struct DetectionOptions {
   // Look for second, parallel edges up to this far (px) beside each detection (parallel_edges.h:
   // the two edges of a thin board, 2-4 px apart, often one weak, which a detector on the
   // smoothed image finds as one, in the mean intensity profile across the detection); 0 = off.
-  // 3.5 px: the pairs 2-4 px apart; 4-6 px gain 0.1-0.4 points of room recall (more in the
+  // 3.5 px: the pairs 2-4 px apart; 4-5 px gain 0.1-0.5 points of room recall (more in the
   // corridor) but fail the KITTI excerpt's prediction test (docs/frontend.md).
   double parallel_edge_px = 3.5;
   // Mean grey-level difference between the two sides of a segment (sampled 2 px off it; for a

@@ -87,6 +87,26 @@ TEST(AddParallelEdges, FindsAWeakEdgeThreePixelsFromAStrongOneOfTheSamePolarity)
   EXPECT_EQ(strict_lines.size(), 1u);
 }
 
+TEST(AddParallelEdges, TheDefaultsKeepASixLevelStepThatTheFormerContrastBoundDropped) {
+  // Weak step 80 -> 86 at v = 57.5, strong 86 -> 150 at v = 60.5. Its own step (measured ~7
+  // with this noise; at 6 levels the search finds it under about half of the noise draws) is
+  // above the default min_contrast 5 and the noise of a two-pixel difference (3.1), below the
+  // 8 of before the second edges.
+  const cv::Mat image = Image(80, {{58, 60, 86}, {61, 119, 150}});
+  std::vector<ImageLine> lines = {Detection(image, 60.5)};
+  AddParallelEdges(DetectionOptions(), kMinGradient, image, &lines);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_NEAR(lines[1].segment[1], 57.5, 0.4);
+  EXPECT_NEAR(lines[1].segment[3], 57.5, 0.4);
+  EXPECT_GT(lines[1].contrast, 5.0f);
+  EXPECT_LT(lines[1].contrast, 8.0f);
+  DetectionOptions former;
+  former.min_contrast = 8.0;
+  std::vector<ImageLine> former_lines = {Detection(image, 60.5)};
+  AddParallelEdges(former, kMinGradient, image, &former_lines);
+  EXPECT_EQ(former_lines.size(), 1u);
+}
+
 TEST(AddParallelEdges, ReplacesAShorterPieceOfTheSecondEdge) {
   const cv::Mat image = Image(80, {{58, 60, 150}});
   // The lower edge detected only on its first 50 px (and pointing as the gradient says).
