@@ -4,7 +4,9 @@
 #include <cmath>
 #include <iterator>
 
+#include "common/random.h"
 #include "frontend/image_sampling.h"
+#include "simulator/random_draws.h"
 
 namespace slt {
 namespace {
@@ -109,6 +111,83 @@ nlohmann::json RenderedPaperConfig(int frames) {
           {"motion", {{"type", "paper"}, {"sinusoid", {{"max_rotation_deg", 1.0}, {"max_translation_m", 0.01}}}}},
           {"noise", {{"endpoint_px", 0.0}}},
           {"observation", kVisibleTruth}};
+}
+
+std::vector<Line3d> WithBarSecondEdges(const SimulatedSequence& sequence) {
+  std::vector<Line3d> lines = sequence.lines;
+  const auto is_vertex = [](const Surface& s, const Eigen::Vector3d& x) {
+    return std::any_of(s.vertices.begin(), s.vertices.end(), [&](const Eigen::Vector3d& v) { return v == x; });
+  };
+  for (const Line3d& line : sequence.lines) {
+    for (const Surface& s : sequence.surfaces) {
+      if (!s.two_sided || s.vertices.size() != 4 || !is_vertex(s, line.p) || !is_vertex(s, line.q)) continue;
+      // The bar's other long edge: the two vertices that are not the line's, in the line's order.
+      std::vector<Eigen::Vector3d> other;
+      for (const Eigen::Vector3d& v : s.vertices) {
+        if (v != line.p && v != line.q) other.push_back(v);
+      }
+      if (other.size() != 2) continue;
+      if ((other[0] - line.p).norm() > (other[1] - line.p).norm()) std::swap(other[0], other[1]);
+      lines.push_back({other[0], other[1]});
+      break;
+    }
+  }
+  return lines;
+}
+
+StereoSequence WithErrorReplaced(const SimulatedSequence& sequence, const std::vector<Line3d>& lines,
+                                 const StereoSequence& observed, double sigma_px, std::uint64_t seed,
+                                 const AuditCriteria& criteria) {
+  SimulatedSequence judged;
+  judged.true_rig = sequence.true_rig;
+  judged.ground_truth = sequence.ground_truth;
+  judged.lines = lines;
+  // Per id, the lines under both of its segments in every frame so far (intersection).
+  std::map<std::int64_t, std::vector<int>> under;
+  std::vector<int> common, still;
+  const int frames = static_cast<int>(observed.frames.size());
+  for (int k = 0; k < frames; ++k) {
+    const ProjectedGroundTruth left = ProjectedGroundTruthAt(judged, k, 0, criteria);
+    const ProjectedGroundTruth right = ProjectedGroundTruthAt(judged, k, 1, criteria);
+    const StereoFrame& frame = observed.frames[k];
+    for (size_t i = 0; i < frame.left.size(); ++i) {
+      JudgeStereoPair(left, right, frame.left[i].segment, frame.right[i].segment, &common);
+      const auto [it, first] = under.emplace(frame.left[i].id, common);
+      if (!first) {
+        Intersect(it->second, common, &still);
+        it->second.swap(still);
+      }
+    }
+  }
+  RandomStream stream = MakeStream(seed, "frontend_error_model");
+  StereoSequence out = observed;
+  for (int k = 0; k < frames; ++k) {
+    const Rigid3d left_from_world = sequence.ground_truth.at(k).world_from_cam.Inverse();
+    const Rigid3d cam_from_world[2] = {left_from_world, sequence.true_rig.right_from_left * left_from_world};
+    const PinholeCamera* camera[2] = {&sequence.true_rig.left, &sequence.true_rig.right};
+    StereoFrame& frame = out.frames[k];
+    for (int c = 0; c < 2; ++c) {
+      for (LineObservation& o : c == 0 ? frame.left : frame.right) {
+        const std::vector<int>& on = under.at(o.id);
+        if (on.empty()) continue;
+        const Line3d& line = lines[on.front()];
+        // The line's points in front of the camera (the audit found the line in view: one
+        // endpoint at least is in front).
+        Eigen::Vector3d p = cam_from_world[c] * line.p, q = cam_from_world[c] * line.q;
+        constexpr double kMinDepth = 0.05;
+        if (p.z() < kMinDepth) p += (kMinDepth - p.z()) / (q.z() - p.z()) * (q - p);
+        if (q.z() < kMinDepth) q += (kMinDepth - q.z()) / (p.z() - q.z()) * (p - q);
+        const Eigen::Vector2d a = camera[c]->Project(p), b = camera[c]->Project(q);
+        const Eigen::Vector2d d = (b - a).normalized(), n(-d.y(), d.x());
+        const Eigen::Vector2d noise = sigma_px * StandardNormalPair(stream);
+        for (int e = 0; e < 2; ++e) {
+          const Eigen::Vector2d x = o.segment.segment<2>(2 * e);
+          o.segment.segment<2>(2 * e) = x - (n.dot(x - a) - noise[e]) * n;
+        }
+      }
+    }
+  }
+  return out;
 }
 
 PairVerdict JudgeStereoPair(const ProjectedGroundTruth& left_truth, const ProjectedGroundTruth& right_truth,

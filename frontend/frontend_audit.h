@@ -70,6 +70,24 @@ nlohmann::json RenderedRoomConfig(int frames, bool euroc_size);
 nlohmann::json RenderedCorridorConfig(int frames);
 nlohmann::json RenderedPaperConfig(int frames);
 
+// The scene's lines for judging a front end. On the paper scene each segment is one long edge of
+// a bar 4 mm wide (simulator/scene.cc): the images show its second long edge too, which the
+// simulator does not list. The lines of `sequence` followed by the edge opposite each listed
+// line on its bar (a two-sided four-sided surface with the line as an edge); other scenes'
+// lines as they are.
+std::vector<Line3d> WithBarSecondEdges(const SimulatedSequence& sequence);
+
+// The front end's output `observed` with its across-line error replaced by a chosen one: each
+// line whose track lies on one line L of `lines` in both images in every frame of its life (the
+// audit's test, AuditCriteria) is moved onto L's projection (each endpoint along L's normal, so
+// its position along the line is kept) and displaced across it by sigma_px N(0, 1), independent
+// per endpoint, image and frame (the "frontend_error_model" stream of `seed`); other lines are
+// kept as measured. The same lines, ids (tracks) and frames as the run: only the error model
+// differs (docs/frontend.md, "the paper scene's ATE").
+StereoSequence WithErrorReplaced(const SimulatedSequence& sequence, const std::vector<Line3d>& lines,
+                                 const StereoSequence& observed, double sigma_px, std::uint64_t seed,
+                                 const AuditCriteria& criteria = {});
+
 // The verdict on a stereo pair of segments (see above); `common` receives the ground-truth
 // lines under both, ascending.
 enum class PairVerdict { kCorrect, kWrong, kUnjudged };

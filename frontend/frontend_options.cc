@@ -75,6 +75,7 @@ const OptionSchema<TrackingOptions>& TrackingOptionsSchema() {
           .Field("snap_min_fraction", &T::snap_min_fraction, InRange(0.0, 1.0), "edge snapping: fewest searches finding an edge, fraction")
           .Field("snap_min_gradient", &T::snap_min_gradient, AtLeast(0.0), "edge snapping: weakest edge, grey levels per px")
           .Field("max_angle_sigma_deg", &T::max_angle_sigma_deg, AtLeast(0.0), "edge snapping: largest standard error of the line's direction, deg (0 = off)")
+          .Field("extend_max_px", &T::extend_max_px, InRange(0.0, 1e4), "growth of a tracked segment's ends along its edge per frame, px (0 = off)")
           .Field("min_stereo_overlap", &T::min_stereo_overlap, InRange(0.0, 1.0), "stereo consistency: overlap in the epipolar beam")
           .Check("max_points", [](const T& t) { return t.max_points >= t.min_points ? "" : "must be >= min_points"; });
   return schema;

@@ -154,6 +154,12 @@ struct TrackingOptions {
   // one is worse than none to the tracker. Tracked lines only (SnapDetections does not apply
   // it: a new line is checked at its first tracked frame).
   double max_angle_sigma_deg = 0.3;
+  // A snapped tracked segment's ends grow along its edge by at most this per frame, px
+  // (ExtendAlongEdge, line_tracking.h; 0 = off): the snap only trims, so without growth a
+  // segment's extent only shrinks over its track and it is lost as too short while its edge is
+  // still long in view. Off by default: with trifocal_line_ekf's default reference policy the
+  // longer tracks mean rarer, smaller references (docs/frontend.md, "the paper scene's ATE").
+  double extend_max_px = 0.0;
   // A tracked pair is dropped when its segments no longer overlap in each other's epipolar beam
   // by this fraction (stereo consistency), or leave the disparity range.
   double min_stereo_overlap = 0.3;

@@ -79,6 +79,22 @@ constexpr float kScharrScale = 32.0f;
 constexpr int kMaxSnapRadius = 20;  // TrackingOptions' range
 constexpr double kSnapEndMarginPx = 3.0;
 
+// The gradient (du, dv) projected on (gx, gy) (a unit normal pre-scaled by 1 / kScharrScale),
+// grey levels per px, at a sub-pixel position.
+inline float GradientAlong(const cv::Mat& derivatives, const Eigen::Vector2d& x, float gx, float gy) {
+  const Eigen::Vector2f grad = SampleDerivative(derivatives, static_cast<float>(x.x()), static_cast<float>(x.y()));
+  return gx * grad.x() + gy * grad.y();
+}
+
+// Whether x lies on an edge: the gradient across it (projected on (gx, gy), of the polarity
+// `sign`) is at least min_gradient and not below that 1 px to either side along `step`.
+inline bool OnEdge(const cv::Mat& derivatives, const Eigen::Vector2d& x, const Eigen::Vector2d& step, float gx, float gy,
+                   float sign, double min_gradient) {
+  float g[3];
+  for (int o = -1; o <= 1; ++o) g[o + 1] = sign * GradientAlong(derivatives, x + o * step, gx, gy);
+  return g[1] >= min_gradient && g[1] >= g[0] && g[1] >= g[2];
+}
+
 }  // namespace
 
 bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment,
@@ -178,14 +194,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   // refitted line was off by more than the radius there counts, once the fit is right).
   const Eigen::Vector2d e = (q - p).normalized(), en(-e.y(), e.x());
   const auto on_edge = [&](int m) {
-    const Eigen::Vector2d x = p + along(m) * e;
-    float g[3];
-    for (int o = -1; o <= 1; ++o) {
-      const Eigen::Vector2f grad = SampleDerivative(derivatives, static_cast<float>(x.x() + o * en.x()),
-                                                    static_cast<float>(x.y() + o * en.y()));
-      g[o + 1] = sign * (gx * grad.x() + gy * grad.y());
-    }
-    return g[1] >= options.snap_min_gradient && g[1] >= g[0] && g[1] >= g[2];
+    return OnEdge(derivatives, p + along(m) * e, en, gx, gy, sign, options.snap_min_gradient);
   };
   int first = 0, last = places - 1;
   while (first <= last && !on_edge(first)) ++first;
@@ -198,6 +207,37 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   p = p + t0 * e;
   *segment = Segment2d(p.x(), p.y(), q.x(), q.y());
   return true;
+}
+
+void ExtendAlongEdge(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment) {
+  if (options.extend_max_px <= 0.0 || derivatives.type() != CV_16SC2) return;
+  const Eigen::Vector2d a = segment->head<2>(), b = segment->tail<2>();
+  const double length = (b - a).norm();
+  if (length < 1e-6) return;
+  const Eigen::Vector2d d = (b - a) / length, n(-d.y(), d.x());
+  const float gx = static_cast<float>(n.x()) / kScharrScale, gy = static_cast<float>(n.y()) / kScharrScale;
+  // The edge's polarity and strength: the gradient across the segment at its quarter points.
+  float strength = 0.0f;
+  for (const double f : {0.25, 0.5, 0.75}) strength += GradientAlong(derivatives, a + f * (b - a), gx, gy) / 3.0f;
+  const float sign = strength >= 0.0f ? 1.0f : -1.0f;
+  // The edge continues where it has at least half that strength (image noise alone passes
+  // snap_min_gradient here and there beyond an edge's end).
+  const double min_gradient = std::max(options.snap_min_gradient, 0.5 * std::abs(strength));
+  const double margin = std::min(kSnapEndMarginPx, 0.25 * length), step = options.snap_spacing_px;
+  const double max_u = derivatives.cols - 1.0, max_v = derivatives.rows - 1.0;
+  const auto inside = [&](const Eigen::Vector2d& x) { return x.x() >= 0.0 && x.y() >= 0.0 && x.x() <= max_u && x.y() <= max_v; };
+  // End `end` grows along the unit direction `out` by t while the place t beyond the last
+  // place the snap could use (end - margin out) is on the edge.
+  const auto grow = [&](const Eigen::Vector2d& end, const Eigen::Vector2d& out) {
+    double reached = 0.0;
+    for (double t = step; t <= options.extend_max_px && inside(end + t * out); t += step) {
+      if (!OnEdge(derivatives, end + (t - margin) * out, n, gx, gy, sign, min_gradient)) break;
+      reached = t;
+    }
+    return Eigen::Vector2d(end + reached * out);
+  };
+  const Eigen::Vector2d new_a = grow(a, -d), new_b = grow(b, d);
+  *segment = Segment2d(new_a.x(), new_a.y(), new_b.x(), new_b.y());
 }
 
 void SnapDetections(const TrackingOptions& options, double min_length_px, const cv::Mat& derivatives,
@@ -350,6 +390,8 @@ void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* track
           DirectionUndetermined(options_, direction_sigma_deg)) {
         continue;
       }
+      // The snap only trims; the extent grows back along the edge here (tracked lines only).
+      ExtendAlongEdge(options_, derivatives_, &fit.segment);
     }
     if (!ClipSegmentToImage(width, height, &fit.segment)) continue;
     if ((fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) continue;

@@ -31,6 +31,9 @@
 //          along it), exceeds max_angle_sigma_deg. Frame-to-frame flow alone integrates
 //          its errors (a track drifts off its edge by ~2 px over 20-100 frames, measured in
 //          docs/frontend.md); the snap measures the line in the current image each frame.
+//          The snap trims the segment to the extent of its edge but never lengthens it, so a
+//          tracked segment's ends then grow back along the edge (ExtendAlongEdge, by at most
+//          options.extend_max_px per frame): the extent follows the edge both ways.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -75,6 +78,18 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
 inline bool DirectionUndetermined(const TrackingOptions& options, double direction_sigma_deg) {
   return options.max_angle_sigma_deg > 0.0 && direction_sigma_deg > options.max_angle_sigma_deg;
 }
+
+// The snap's counterpart (the snap only trims an end the flow carried past the edge's end): each
+// end of a snapped segment grows outwards along the segment's line while the line lies on its
+// edge. The place x = end - margin + j s (j = 1, 2, ...; s = options.snap_spacing_px, margin the
+// snap's 3-px end margin, i.e. the last place the snap could use) is on the edge when the
+// gradient across the line there, of the segment's polarity, is at least
+// max(options.snap_min_gradient, g / 2) and not below that 1 px to either side (the snap's
+// trimming test, with the edge's own strength: g = the mean gradient across the segment at its
+// quarter points, whose sign is the polarity); the end moves to the last such place + margin, by at most
+// options.extend_max_px, staying in the image. The line itself does not change. Nothing when
+// extend_max_px is 0.
+void ExtendAlongEdge(const TrackingOptions& options, const cv::Mat& derivatives, Segment2d* segment);
 
 // Detected segments moved onto the image's edges by the snap above (a coarse, fast detection
 // made precise: DetectionOptions::snap_detections), in place; a segment the snap cannot place

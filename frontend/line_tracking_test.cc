@@ -78,14 +78,17 @@ TEST(RefitTrackedLine, LostWhenTooFewPointsAgree) {
 }
 
 // A blurred step edge along the line through `p` with direction `d` (brighter on the left
-// normal n = (-d_v, d_u)), 320 x 240.
-cv::Mat StepEdgeImage(const Eigen::Vector2d& p, const Eigen::Vector2d& d) {
+// normal n = (-d_v, d_u)), 320 x 240; with `half_length`, only within that distance of p along
+// the line (a bright band ending there; flat grey beyond its ends).
+cv::Mat StepEdgeImage(const Eigen::Vector2d& p, const Eigen::Vector2d& d, double half_length = 1e9) {
   cv::Mat image(240, 320, CV_8UC1);
   const Eigen::Vector2d n(-d.y(), d.x());
   for (int v = 0; v < image.rows; ++v) {
     for (int u = 0; u < image.cols; ++u) {
       const double s = n.dot(Eigen::Vector2d(u, v) - p);  // signed distance, px
-      image.at<uchar>(v, u) = cv::saturate_cast<uchar>(100.0 + 60.0 * std::tanh(s / 0.8));
+      const double t = d.dot(Eigen::Vector2d(u, v) - p);  // along the line
+      const double step = std::abs(t) <= half_length ? 60.0 * std::tanh(s / 0.8) : -60.0;
+      image.at<uchar>(v, u) = cv::saturate_cast<uchar>(100.0 + step);
     }
   }
   return image;
@@ -148,6 +151,82 @@ TEST(SnapSegmentToEdges, LosesAShortSegmentWhoseDirectionTheEdgePointsDoNotDeter
   // Measured: the 30-px segment's sigma is 0.2-0.3 deg, the 80-px one's under 0.1.
   EXPECT_FALSE(snapped(15.0, 0.15));
   EXPECT_TRUE(snapped(40.0, 0.15));
+}
+
+TEST(ExtendAlongEdge, GrowsTheEndsAlongTheEdgeUpToItsEndsAndTheLimit) {
+  // An edge 120 px long (t in [-60, 60] along it); a snapped segment on its middle 40 px.
+  const Eigen::Vector2d p(160.4, 121.7), d = Eigen::Vector2d(1.0, 0.35).normalized(), n(-d.y(), d.x());
+  const cv::Mat image = StepEdgeImage(p, d, 60.0);
+  TrackingOptions options;
+  LineFlowTracker tracker(options);
+  ImagePyramid pyramid;
+  tracker.BuildPyramid(image, &pyramid);
+  const auto extended = [&](double t0, double t1, double extend_max_px, Eigen::Vector2d* ends) {
+    options.extend_max_px = extend_max_px;
+    const Eigen::Vector2d a = p + t0 * d, b = p + t1 * d;
+    Segment2d segment(a.x(), a.y(), b.x(), b.y());
+    ExtendAlongEdge(options, pyramid[1], &segment);
+    *ends = {d.dot(segment.head<2>() - p), d.dot(segment.tail<2>() - p)};
+    EXPECT_LT(DistanceToLine(segment, p, d), 1e-9);  // the line does not move
+  };
+  Eigen::Vector2d ends;
+  // Off: nothing changes.
+  extended(-20.0, 20.0, 0.0, &ends);
+  EXPECT_NEAR(ends[0], -20.0, 1e-9);
+  EXPECT_NEAR(ends[1], 20.0, 1e-9);
+  // Each end grows by at most the limit (a whole number of 1.5-px places).
+  extended(-20.0, 20.0, 15.0, &ends);
+  EXPECT_NEAR(ends[0], -35.0, 1e-9);
+  EXPECT_NEAR(ends[1], 35.0, 1e-9);
+  // With room to spare, the ends stop at the edge's ends, not beyond them by more than the
+  // snap's 3-px end margin (which the snap's trimming leaves as well).
+  const auto at_edge_end = [](double end) { return std::abs(end) >= 58.5 && std::abs(end) <= 63.0; };
+  extended(-20.0, 20.0, 100.0, &ends);
+  EXPECT_TRUE(at_edge_end(ends[0]) && ends[0] < 0.0) << ends[0];
+  EXPECT_TRUE(at_edge_end(ends[1]) && ends[1] > 0.0) << ends[1];
+  // Reversed (the other polarity: the segment's left normal on the dark side), the same.
+  extended(20.0, -20.0, 100.0, &ends);
+  EXPECT_TRUE(at_edge_end(ends[0]) && ends[0] > 0.0) << ends[0];
+  EXPECT_TRUE(at_edge_end(ends[1]) && ends[1] < 0.0) << ends[1];
+}
+
+TEST(LineFlowTracker, KeepsATrackedSegmentAsLongAsItsEdge) {
+  // A static edge 120 px long, tracked from a 30-px piece of it: with tracking.extend_max_px the
+  // segment grows to the edge's extent over a few frames (the snap alone only trims: it stays
+  // 30 px and, trimmed or shrunk by the flow's map, falls under tracking.min_length_px).
+  // Image noise (4 grey levels, seeded) gives Lucas-Kanade texture to lock onto (on a noise-free
+  // straight edge its points are ill-conditioned and dropped).
+  const Eigen::Vector2d p(160.4, 121.7), d = Eigen::Vector2d(1.0, 0.35).normalized();
+  cv::Mat image = StepEdgeImage(p, d, 60.0), noise(image.size(), CV_16SC1);
+  cv::theRNG().state = 7;
+  cv::randn(noise, 0.0, 4.0);
+  image.convertTo(image, CV_16SC1);
+  image += noise;
+  image.convertTo(image, CV_8UC1);
+  const auto track = [&](double extend_max_px) {
+    TrackingOptions options;
+    options.extend_max_px = extend_max_px;
+    LineFlowTracker tracker(options);
+    ImagePyramid pyramid;
+    tracker.BuildPyramid(image, &pyramid);
+    const Eigen::Vector2d a = p - 15.0 * d, b = p + 15.0 * d;
+    std::vector<Segment2d> segments = {Segment2d(a.x(), a.y(), b.x(), b.y())};
+    std::vector<char> ok;
+    for (int frame = 0; frame < 5; ++frame) {
+      tracker.Flow(pyramid, pyramid, segments);
+      tracker.Refit(image.cols, image.rows, &segments, &ok);
+      EXPECT_TRUE(ok[0]) << frame;
+    }
+    EXPECT_LT(DistanceToLine(segments[0], p, d), 0.1);
+    return Eigen::Vector2d(d.dot(segments[0].head<2>() - p), d.dot(segments[0].tail<2>() - p));
+  };
+  const Eigen::Vector2d grown = track(20.0);
+  EXPECT_NEAR(grown[0], -60.0, 3.0);
+  EXPECT_NEAR(grown[1], 60.0, 3.0);
+  // Off (the default), the segment keeps at most its 30 px.
+  const Eigen::Vector2d kept = track(0.0);
+  EXPECT_GE(kept[0], -15.5);
+  EXPECT_LE(kept[1], 15.5);
 }
 
 TEST(SnapDetections, MovesDetectionsOntoTheEdgeAndDropsThoseItCannotPlace) {
