@@ -34,6 +34,7 @@
 #include "methods/stereo_ekf/pose_velocity_filter.h"
 #include "methods/stereo_ekf/robust_pose_solver.h"
 #include "methods/stereo_ekf/stereo_ekf_options.h"
+#include "methods/stereo_ekf/structure_consider.h"
 
 namespace slt {
 
@@ -144,6 +145,9 @@ class StereoEkfTracker : public PoseTracker {
   // definite.
   Matrix6d frame_information_ = Matrix6d::Zero();
   PoseVelocityFilter filter_;
+  // When the model describes its reference structure's error (FeatureModel::DescribesStructure):
+  // the update treats it as consider parameters (structure_consider.h).
+  std::unique_ptr<StructureConsider> consider_;
   RobustPoseSolver robust_solver_;
   Counters counters_;
 
