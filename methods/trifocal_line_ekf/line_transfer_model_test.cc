@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <random>
 
 #include "geometry/numeric_jacobian.h"
@@ -87,6 +88,58 @@ TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
                                          : Eigen::Vector4d(1e-4, 0.05, 1e-4, 0.05);
   expected.diagonal() += floor.array().square().matrix();
   EXPECT_LT((expected - block.covariance).norm(), 1e-6 * expected.norm());
+}
+
+// The structure Jacobian G (consider_structure) is sigma times the reference endpoints' columns
+// of the noise Jacobian, so that R = R_current + G G^T.
+TEST(LineTransferModel, StructureJacobianIsTheReferenceEndpointsPartOfTheNoise) {
+  TinyScene scene;
+  LineTransferOptions options = Options("reference_to_current", "endpoint_distance");
+  options.endpoint_sigma_px = 1.3;
+  options.consider_structure = true;
+  const Rigid3d truth = SomeMotion();
+  const StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(truth);
+  const int feature = 1;
+  LineTransferModel model(options);
+  model.Reset(scene.rig);
+  ASSERT_EQ(model.SetReference(ref), 4);
+  ASSERT_EQ(model.SetCurrent(cur), 4);
+  ASSERT_TRUE(model.DescribesStructure());
+  EXPECT_EQ(model.NumStructures(), 4);
+  EXPECT_EQ(model.StructureOf(feature), feature);
+  FeatureModel::StructureJacobian g;
+  ASSERT_TRUE(model.EvaluateStructureJacobian(feature, truth, &g));
+  const auto residual_of = [&](const Eigen::Matrix<double, 8, 1>& x) -> Eigen::Vector4d {
+    StereoFrame r = ref;
+    r.left[feature].segment = x.segment<4>(0);
+    r.right[feature].segment = x.segment<4>(4);
+    FeatureBlock b;
+    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, r, cur, feature, truth, false, &b));
+    return b.residual;
+  };
+  Eigen::Matrix<double, 8, 1> x;
+  x << ref.left[feature].segment, ref.right[feature].segment;
+  const Eigen::Matrix<double, 4, 8> expected = 1.3 * CentralDifferenceJacobian<4, 8>(residual_of, x, 1e-5);
+  EXPECT_GT(expected.norm(), 0.1);
+  EXPECT_LT((expected - g).norm(), 1e-6 * expected.norm());
+  // What is left of R is positive definite: the current segments' noise and the floor.
+  FeatureBlock block;
+  ASSERT_TRUE(model.Evaluate(feature, truth, true, &block));
+  const Eigen::Matrix4d current = block.covariance - g * g.transpose();
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(current).eigenvalues()(0), 0.04 * 0.04);
+  options.consider_structure = false;
+  EXPECT_FALSE(LineTransferModel(options).DescribesStructure());
+}
+
+TEST(LineTransferModel, ConsiderStructureNeedsTheReferenceToCurrentDirectionAndPropagatedNoise) {
+  LineTransferOptions options;
+  options.consider_structure = true;
+  EXPECT_NO_THROW(options.Check());
+  options.direction = TransferDirection::kCurrentToReference;
+  EXPECT_THROW(options.Check(), ConfigError);
+  options.direction = TransferDirection::kReferenceToCurrent;
+  options.noise = MeasurementNoise::kFixed;
+  EXPECT_THROW(options.Check(), ConfigError);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllVariants, LineTransferModelTest,
