@@ -387,7 +387,15 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
         Eigen::Matrix<double, 4, 4> d_tangent;
         d_tangent.topRows<2>().noalias() = d1_line * line.line_d_tangent;
         d_tangent.bottomRows<2>().noalias() = d2_line * line.line_d_tangent;
-        refined_covariance.noalias() = d_tangent * line.tangent_covariance * d_tangent.transpose();
+        if (options_.consider_structure) {
+          // As G G^T of EvaluateStructureJacobian, so that R - G G^T is the current noise also
+          // for a line whose covariance is huge in a direction the residual barely sees (where
+          // d C d^T and (d S)(d S)^T differ by their rounding).
+          const Eigen::Matrix4d d_sqrt = d_tangent * line.tangent_sqrt_covariance;
+          refined_covariance.noalias() = d_sqrt * d_sqrt.transpose();
+        } else {
+          refined_covariance.noalias() = d_tangent * line.tangent_covariance * d_tangent.transpose();
+        }
         line_covariance = &refined_covariance;
       }
     }
