@@ -1,13 +1,16 @@
 // The command-line steps every program shares (CLI11): parse, then the program's own checks of
 // its options (--help prints the help on stdout and exits 0; a command-line error prints one line
 // "<program>: error: <what> (see --help)" on stderr and exits 2); the options several programs
-// take, declared once; and the run of the program's work with its errors reported.
+// take, declared once, and their options files; and the run of the program's work with its errors reported.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <nlohmann/json.hpp>
 #include <string>
+
+#include "common/json_reader.h"
 
 namespace slt {
 
@@ -46,6 +49,12 @@ int RunProgram(const char* program, const Body& body) {
     std::fprintf(stderr, "%s: error: %s\n", program, e.what());
     return 1;
   }
+}
+
+// The options file an option names (--config FILE): its JSON, or {} when the option is not given
+// (every option keeps its default). ReadJsonFile's errors name the file.
+inline nlohmann::json ReadOptionsFile(const std::string& path) {
+  return path.empty() ? nlohmann::json::object() : ReadJsonFile(path);
 }
 
 // --method,-m: a registered tracker (methods/pose_tracker.h), and its options file under

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,15 @@ TEST(ParseCommandLine, GoesOnStopsWithHelpOrFailsWithTwo) {
   const std::string errors = testing::internal::GetCapturedStderr();
   EXPECT_NE(errors.find("program: error: "), std::string::npos);
   EXPECT_NE(errors.find("must not be 3 (see --help)"), std::string::npos);
+}
+
+TEST(ReadOptionsFile, TheFilesJsonOrEveryDefault) {
+  EXPECT_EQ(ReadOptionsFile(""), nlohmann::json::object());
+  const std::string path = (std::filesystem::path(::testing::TempDir()) / "slt_options_file.json").string();
+  WriteJsonFile(path, {{"a", 1}});
+  EXPECT_EQ(ReadOptionsFile(path), nlohmann::json({{"a", 1}}));
+  std::filesystem::remove(path);
+  EXPECT_THROW(ReadOptionsFile(path), ConfigError);
 }
 
 TEST(RunProgram, ExitsWithTheBodysCodeOrOneLineOfError) {

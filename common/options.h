@@ -2,7 +2,9 @@
 // declaration); one OptionSchema<S> lists each field once more with its JSON key, its allowed
 // range or enum values and a one-line doc, and everything else derives from that list:
 //   Read     strict JSON types (JsonReader::Get), enum names parsed once into the enum, nested
-//            objects and arrays of objects with their own schemas, then Check;
+//            objects and arrays of objects with their own schemas, member structs whose
+//            fields stand flat among the parent's (Flat: one struct shared by several), then
+//            Check;
 //   ToJson   every field (what --print-config and config.resolved.json show);
 //   Validate each range in order, then the struct-wide checks; errors are ConfigError
 //            "<where>: key '<path>.<key>': <reason>" (common/json_reader.h);
@@ -243,6 +245,33 @@ class OptionSchema {
     entries_.push_back(std::move(e));
     return std::move(*this);
   }
+  // A member struct whose fields stand among this schema's own, under the child schema's keys
+  // (no nesting in JSON): one option struct shared by several option structs that keep flat
+  // keys. Its fields' reading, writing, checks and listing are the child schema's, in its order.
+  template <typename C>
+  OptionSchema&& Flat(C S::*member, const OptionSchema<C>& schema) && {
+    for (const auto& c : schema.entries()) {
+      Entry e = MakeEntry(c.key, c.doc, c.allowed);
+      e.read = [member, read = c.read](JsonReader& r, S* s) { read(r, &(s->*member)); };
+      if (c.write) e.write = [member, write = c.write](const S& s) { return write(s.*member); };
+      if (c.check) e.check = [member, check = c.check](const S& s) { return check(s.*member); };
+      if (c.validate_child) {
+        e.validate_child = [member, v = c.validate_child](const S& s, const std::string& where, const std::string& path) {
+          v(s.*member, where, path);
+        };
+      }
+      if (c.list_child) {
+        e.list_child = [member, list = c.list_child](const S& s, const std::string& key, std::vector<OptionDoc>* out) {
+          list(s.*member, key, out);
+        };
+      }
+      entries_.push_back(std::move(e));
+    }
+    for (const auto& [key, check] : schema.checks()) {
+      checks_.push_back({key, [member, check = check](const S& s) { return check(s.*member); }});
+    }
+    return std::move(*this);
+  }
   // An array of objects, each read and written with its own schema (key paths "key[i].field");
   // present, it replaces the default elements.
   template <typename C>
@@ -341,6 +370,7 @@ class OptionSchema {
     return docs;
   }
   const std::vector<Entry>& entries() const { return entries_; }
+  const std::vector<std::pair<std::string, std::function<std::string(const S&)>>>& checks() const { return checks_; }
 
  private:
   static Entry MakeEntry(std::string key, std::string doc, std::string allowed) {

@@ -117,6 +117,50 @@ TEST(OptionSchema, ArraysOfObjectsAndObjectsKeptAsGiven) {
   EXPECT_EQ(docs[0].key, "items[].rate");
 }
 
+// Outer's fields and Outer's own, under flat keys in one object.
+struct Flattened {
+  double level = 2.0;
+  Outer shared;
+};
+
+const OptionSchema<Flattened>& FlattenedSchema() {
+  static const OptionSchema<Flattened> schema = OptionSchema<Flattened>()
+                                                    .Field("level", &Flattened::level, Positive(), "its own")
+                                                    .Flat(&Flattened::shared, OuterSchema());
+  return schema;
+}
+
+TEST(OptionSchema, FlatMembersKeepTheirKeysAmongTheParentsOwn) {
+  Flattened f;
+  JsonReader r(nlohmann::json{{"level", 3.0}, {"count", 5}, {"mode", "exact"}, {"inner", {{"rate", 1.0}}}}, "f.json", "top");
+  FlattenedSchema().Read(r, &f);
+  r.RejectUnknownKeys();
+  EXPECT_EQ(f.level, 3.0);
+  EXPECT_EQ(f.shared.count, 5);
+  EXPECT_EQ(f.shared.mode, Mode::kExact);
+  EXPECT_EQ(f.shared.inner.rate, 1.0);
+  EXPECT_EQ(f.shared.follows_mode, 7);  // the child's reading steps run too
+  const nlohmann::json expected = {{"level", 3.0}, {"count", 5}, {"on", true}, {"mode", "exact"}, {"inner", {{"rate", 1.0}}}};
+  EXPECT_EQ(FlattenedSchema().ToJson(f), expected);
+  auto error_of = [](const nlohmann::json& j) {
+    return ConfigErrorOf([&] {
+      Flattened g;
+      JsonReader reader(j, "f.json", "top");
+      FlattenedSchema().Read(reader, &g);
+    });
+  };
+  EXPECT_EQ(error_of({{"count", 0}}), "f.json: key 'top.count': must be >= 1 (one at least)");
+  EXPECT_EQ(error_of({{"inner", {{"rate", 0.0}}}}), "f.json: key 'top.inner.rate': must be in (0, 1]");
+  EXPECT_EQ(error_of({{"on", false}, {"count", 4}}), "f.json: key 'top.count': must be 3 when off");  // its checks
+  std::vector<OptionDoc> docs;
+  FlattenedSchema().List(Flattened(), "p", &docs);
+  std::vector<std::string> keys;
+  for (const OptionDoc& d : docs) keys.push_back(d.key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"p.level", "p.count", "p.on", "p.mode", "p.inner.rate"}));
+  EXPECT_EQ(docs[1].doc, "how many");
+  EXPECT_EQ(docs[1].allowed, ">= 1");
+}
+
 TEST(FirstRepeat, IndexOfTheFirstKeySeenBefore) {
   const std::vector<std::pair<int, std::string>> items = {{1, "a"}, {2, "b"}, {3, "a"}, {4, "b"}};
   EXPECT_EQ(FirstRepeat(items, [](const auto& item) { return item.second; }), 2u);

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "common/json_reader.h"
-#include "experiments/regression.h"
+#include "experiments/regression_test_support.h"
 
 namespace slt {
 namespace {

@@ -1,12 +1,8 @@
 #include "experiments/regression.h"
 
-#include <algorithm>
 #include <cmath>
-#include <map>
-#include <set>
 
 #include "common/table.h"
-#include "methods/pose_tracker.h"
 
 namespace slt {
 namespace {
@@ -14,99 +10,6 @@ namespace {
 std::string Num(double v) { return StringPrintf("%.4g", v); }
 
 }  // namespace
-
-RegressionReport CompareWithReference(const ExperimentConfig& config, const std::vector<SummaryRow>& rows,
-                                      const CsvTable& reference, const nlohmann::json& reference_config,
-                                      const RegressionTolerance& tolerance) {
-  RegressionReport report;
-  const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-
-  // The numbers only compare when the experiment is the same: a changed CI config needs a new
-  // reference, not a tolerance failure.
-  const nlohmann::json current = ExperimentConfigToJson(config);
-  for (const char* key : {"trials", "seed", "simulation", "sweep", "metrics_frame"}) {
-    if (!reference_config.contains(key) || reference_config[key] != current[key]) {
-      report.failures.push_back(std::string("the config's '") + key + "' differs from the reference's (" +
-                                (reference_config.contains(key) ? reference_config[key].dump() : "absent") + " there, " +
-                                current[key].dump() + " here): regenerate the reference deliberately with "
-                                "scripts/update_references.sh");
-    }
-  }
-  if (!report.failures.empty()) return report;
-
-  // Reference methods: id -> tracker name.
-  std::map<std::string, std::string> reference_methods;
-  if (reference_config.contains("methods") && reference_config["methods"].is_array()) {
-    for (const nlohmann::json& m : reference_config["methods"]) {
-      reference_methods[m.value("label", m.value("name", ""))] = m.value("name", "");
-    }
-  }
-  const size_t method_column = reference.Column("method");
-  for (const auto& row : reference.rows) {
-    if (!reference_methods.count(row[method_column])) reference_methods[row[method_column]] = row[method_column];
-  }
-  const std::vector<std::string> registered = RegisteredTrackerNames();
-  for (const auto& [id, name] : reference_methods) {
-    if (std::find(registered.begin(), registered.end(), name) == registered.end()) {
-      report.failures.push_back("reference method '" + id + "' (tracker '" + name +
-                                "') is no longer registered: restore it, or regenerate the references "
-                                "deliberately with scripts/update_references.sh");
-    } else if (MethodIndex(config, id) < 0) {
-      report.failures.push_back("reference method '" + id + "' was not run: the config no longer includes it "
-                                "(regenerate the references with scripts/update_references.sh if intended)");
-    }
-  }
-
-  // Reference rows by (method id, sweep point): the same sweep (checked above) has the same points.
-  std::map<std::pair<std::string, std::string>, size_t> by_key;
-  for (size_t r = 0; r < reference.rows.size(); ++r) {
-    by_key[{reference.rows[r][method_column], reference.rows[r][reference.Column("point")]}] = r;
-  }
-
-  const struct {
-    int metric;
-    double floor;
-  } checked[] = {{kRotErrDeg, tolerance.rot_floor_deg}, {kTransErrM, tolerance.trans_floor_m}};
-  std::set<std::string> no_reference;
-  for (const SummaryRow& row : rows) {
-    const std::string& id = config.methods.at(row.method).Id();
-    if (!reference_methods.count(id)) {
-      no_reference.insert(id);
-      continue;
-    }
-    const auto it = by_key.find({id, std::to_string(row.point)});
-    const std::string at = "'" + id + "' at " + PointText(config, points.at(row.point));
-    if (it == by_key.end()) {
-      report.failures.push_back(at + ": no reference row (the sweep changed? regenerate with scripts/update_references.sh)");
-      continue;
-    }
-    const std::vector<std::string>& ref = reference.rows[it->second];
-    const double ref_finite = ParseDouble(ref[reference.Column("finite_trials")]);
-    if (static_cast<double>(row.finite_trials) < ref_finite) {
-      report.failures.push_back(at + ": " + std::to_string(row.finite_trials) + " trials with finite poses, reference " +
-                                Num(ref_finite));
-    }
-    for (const auto& c : checked) {
-      const std::string column = std::string(TrialMetricName(c.metric)) + "_mean";
-      const double reference_value = ParseDouble(ref[reference.Column(column)]);
-      const double current = row.metrics[c.metric].mean;
-      const double limit = std::max(tolerance.relative * reference_value, reference_value + c.floor);
-      const bool pass = std::isfinite(current) && (!std::isfinite(reference_value) || current <= limit);
-      report.table += (pass ? "  ok    " : "  FAIL  ") + at + "  " + column + " = " + Num(current) +
-                      "  (reference " + Num(reference_value) + ", limit " + Num(limit) + ")\n";
-      if (!pass) {
-        report.failures.push_back(at + ": " + column + " = " + Num(current) + " exceeds the limit " + Num(limit) +
-                                  " (reference " + Num(reference_value) + "; limit = max(" + Num(tolerance.relative) +
-                                  " x reference, reference + " + Num(c.floor) + "))");
-      }
-    }
-  }
-  for (const std::string& id : no_reference) {
-    report.notes.push_back("'" + id + "': no reference (a method registered after the references were made); "
-                           "not checked. Add it with scripts/update_references.sh");
-  }
-  return report;
-}
 
 RegressionReport CheckOrderings(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
   RegressionReport report;

@@ -1,6 +1,6 @@
 // experiments_regression_test: reruns every fast config of experiments/configs/ci/ and fails
 // when a method's mean error grows beyond the tolerance over the committed reference in
-// results/reference/<name>/ (experiments/regression.h states the tolerance), or when the
+// results/reference/<name>/ (experiments/regression_test_support.h states the tolerance), or when the
 // config's expected best method (the paper's ordering) loses its place.
 //
 // The fresh outputs are written to <build>/experiments/regression/<name>/ for inspection.
@@ -14,7 +14,7 @@
 #include "common/json_reader.h"
 #include "common/csv.h"
 #include "experiments/experiment_driver.h"
-#include "experiments/regression.h"
+#include "experiments/regression_test_support.h"
 
 namespace slt {
 namespace {

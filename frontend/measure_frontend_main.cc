@@ -289,8 +289,7 @@ int main(int argc, char** argv) {
   if (const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend"); exit_code >= 0) return exit_code;
   return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
-    const FrontEndOptions options =
-        config_path.empty() ? FrontEndOptions() : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
+    const FrontEndOptions options = FrontEndOptionsFromJson(ReadOptionsFile(config_path), config_path);
     const std::vector<MeasuredScene> scenes = Scenes(frames, only_scene);
     // The options measured, when not the defaults: the config's file name and its content.
     const std::string config_note =

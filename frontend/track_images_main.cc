@@ -73,12 +73,8 @@ int main(int argc, char** argv) {
 
   return RunProgram("track_images", [&] {
     cv::setNumThreads(1);  // single thread, as measured
-    const FrontEndOptions options = config_path.empty() ? FrontEndOptions()
-                                                        : FrontEndOptionsFromJson(ReadJsonFile(config_path), config_path);
-    const nlohmann::json tracker_options =
-        tracker_config_path.empty() ? nlohmann::json::object() : ReadJsonFile(tracker_config_path);
-    std::unique_ptr<PoseTracker> tracker =
-        CreateTracker(method, tracker_options, tracker_config_path.empty() ? "--tracker-config" : tracker_config_path);
+    const FrontEndOptions options = FrontEndOptionsFromJson(ReadOptionsFile(config_path), config_path);
+    std::unique_ptr<PoseTracker> tracker = CreateTracker(method, ReadOptionsFile(tracker_config_path), tracker_config_path);
     const std::unique_ptr<StereoImageSource> source = OpenStereoImages(path, DatasetLayoutFromName(dataset));
     const auto [first, end] = ParseFrames(frames_text, source->size());
     const StereoRig& rig = source->rig();

@@ -48,8 +48,7 @@ int main(int argc, char** argv) {
       std::cout << (info.list_options ? FormatOptionDocs(info.list_options()) : method + " takes no options\n");
       return 0;
     }
-    const nlohmann::json options = config_path.empty() ? nlohmann::json::object() : ReadJsonFile(config_path);
-    auto tracker = CreateTracker(method, options, config_path.empty() ? "--config" : config_path);
+    auto tracker = CreateTracker(method, ReadOptionsFile(config_path), config_path);
     if (print_config) {
       std::cout << tracker->Options().dump(2) << "\n";
       return 0;

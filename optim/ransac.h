@@ -55,12 +55,20 @@
 #include <utility>
 #include <vector>
 
+#include "common/options.h"
+
 namespace slt {
 
+// The options of a robust solve, one struct for every tracker that runs one (their configs keep
+// the flat keys of RansacOptionsSchema: OptionSchema::Flat).
 struct RansacOptions {
   int max_iterations = 200;  // samples drawn at most
   double confidence = 0.999;  // of having drawn an all-inlier sample, for adaptive stopping
+  std::uint64_t seed = 1;     // the caller's Ransac::Reset(seed) when it starts over
 };
+
+// Keys "ransac_max_iterations", "ransac_confidence" and "seed".
+const OptionSchema<RansacOptions>& RansacOptionsSchema();
 
 template <typename Model>
 struct RansacResult {

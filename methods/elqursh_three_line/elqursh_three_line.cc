@@ -150,15 +150,13 @@ class ElqurshThreeLineTracker final : public PoseTracker {
       : options_(options), model_(MeasurementOptions(options)) {
     tolerances_.max_parallel_sine = std::sin(Radians(options.parallel_tolerance_deg));
     tolerances_.max_orthogonal_cosine = std::sin(Radians(options.orthogonal_tolerance_deg));
-    ransac_options_.max_iterations = options.ransac_max_iterations;
-    ransac_options_.confidence = options.ransac_confidence;
   }
 
   void Reset(const StereoRig& rig) override {
     rig.Check();
     rig_ = rig;
     model_.Reset(rig);
-    ransac_.Reset(options_.seed);
+    ransac_.Reset(options_.ransac.seed);
     started_ = false;
     velocity_.setZero();
   }
@@ -179,7 +177,6 @@ class ElqurshThreeLineTracker final : public PoseTracker {
   ElqurshThreeLineOptions options_;
   LineTransferModel model_;
   PrimitiveConfigurationTolerances tolerances_;
-  RansacOptions ransac_options_;
   Ransac<Rigid3d> ransac_;
   StereoRig rig_;
   bool started_ = false;
@@ -263,8 +260,8 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
   if (!candidates_.empty()) {
     const ThreeLineEstimator estimator(options_, rig_, model_, lines_, directions_, tolerances_, candidates_,
                                        &refine_features_, &refine_indices_);
-    candidates_.StartDraws(options_.ransac_max_iterations);
-    ransac_.Run(estimator, ransac_options_, {}, &result_);
+    candidates_.StartDraws(options_.ransac.max_iterations);
+    ransac_.Run(estimator, options_.ransac, {}, &result_);
     const int needed = std::max(options_.min_inliers,
                                 static_cast<int>(std::ceil(options_.min_inlier_fraction * available)));
     const int consensus = static_cast<int>(result_.inliers.size());
@@ -332,10 +329,7 @@ const OptionSchema<ElqurshThreeLineOptions>& ElqurshThreeLineOptionsSchema() {
                  "larger rotations between a frame and its reference are rejected")
           .Field("inlier_threshold_px", &O::inlier_threshold_px, Positive().Finite(),
                  "a line agrees with a pose below this RMS endpoint distance (px)")
-          .Field("ransac_max_iterations", &O::ransac_max_iterations, AtLeast(1), "RANSAC samples at most")
-          .Field("ransac_confidence", &O::ransac_confidence, InRange(0.0, 1.0, "()"),
-                 "confidence of RANSAC's adaptive stop")
-          .Field("seed", &O::seed, AnyNumber(), "seed of the sampler (reset with the tracker)")
+          .Flat(&O::ransac, RansacOptionsSchema())
           .Field("refine_iterations", &O::refine_iterations, InRange(0, 50), "Gauss-Newton iterations on the consensus")
           .Field("min_inliers", &O::min_inliers, AtLeast(3).Note("a configuration has three lines"),
                  "smallest consensus accepted (lines)")

@@ -39,6 +39,7 @@
 
 #include "common/options.h"
 #include "methods/pose_tracker.h"
+#include "optim/ransac.h"
 
 namespace slt {
 
@@ -59,13 +60,11 @@ struct ElqurshThreeLineOptions {
   // onto themselves by the half-turn about the edge that joins the other two, so their infinite
   // lines fit the true pose and its mirror equally well (tests/elqursh_three_line_accuracy_test.cc).
   double max_rotation_deg = 45.0;
-  // RANSAC: inlier threshold on the RMS endpoint distance of a line over both current images,
+  // RANSAC: inlier threshold on the RMS endpoint distance of a line over both current images;
   // samples drawn at most, confidence of the adaptive stop, seed of the sampler (reset with the
   // tracker).
   double inlier_threshold_px = 4.0;
-  int ransac_max_iterations = 200;
-  double ransac_confidence = 0.999;
-  std::uint64_t seed = 1;
+  RansacOptions ransac;
   // Gauss-Newton iterations of the refinement on the consensus.
   int refine_iterations = 10;
   // The smallest consensus accepted: at least min_inliers lines and min_inlier_fraction of the

@@ -27,10 +27,7 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
           .Field("adaptive_noise", &O::adaptive_noise, "scale R online from the posterior residuals")
           .Field("robust", &O::robust, "RANSAC start when the prior is weak or the filter unhealthy")
           .Field("robust_start_frames", &O::robust_start_frames, AtLeast(0), "frames after the start seeded by RANSAC")
-          .Field("ransac_max_iterations", &O::ransac_max_iterations, AtLeast(1), "RANSAC samples at most")
-          .Field("ransac_confidence", &O::ransac_confidence, InRange(0.0, 1.0, "()"),
-                 "RANSAC adaptive stopping: probability of an all-inlier sample")
-          .Field("seed", &O::seed, AnyNumber(), "seed of the RANSAC sampler")
+          .Flat(&O::ransac, RansacOptionsSchema())
           .Field("min_consensus", &O::min_consensus, AtLeast(2), "features a RANSAC solve needs to count")
           .Field("lost_velocity_decay", &O::lost_velocity_decay, InRange(0.0, 1.0),
                  "velocity factor per frame without update (1 = coast)")

@@ -10,6 +10,7 @@
 #include "common/chi_square.h"  // ChiSquareQuantile, for the gate
 #include "common/json_reader.h"
 #include "common/options.h"
+#include "optim/ransac.h"
 
 namespace slt {
 
@@ -62,9 +63,7 @@ struct StereoEkfOptions {
   // disagrees with the prediction, the filter is re-seeded from it.
   bool robust = true;
   int robust_start_frames = 3;
-  int ransac_max_iterations = 200;
-  double ransac_confidence = 0.999;
-  std::uint64_t seed = 1;
+  RansacOptions ransac;
   // A RANSAC solve counts only when at least min_consensus features agree (fewer when fewer are
   // measurable): any two features agree with the pose fitted to them, so a consensus of two out
   // of many confirms nothing.

@@ -72,7 +72,7 @@ void StereoEkfTracker::Reset(const StereoRig& rig) {
   model_->Reset(rig);
   started_ = false;
   counters_ = Counters();
-  robust_solver_.Reset(options_.seed);
+  robust_solver_.Reset(options_.ransac.seed);
 }
 
 TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
@@ -179,7 +179,7 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
   // pose, where the features were first seen.
   if (!healthy_) starts_.push_back(Rigid3d());
   robust_solver_.Solve(*model_, features_, valid_, starts_, gate_,
-                       {options_.ransac_max_iterations, options_.ransac_confidence}, &robust_result_);
+                       options_.ransac, &robust_result_);
   const int consensus = static_cast<int>(robust_result_.inliers.size());
   const int min_consensus = std::min(state->valid, options_.min_consensus);
   if (!robust_result_.success || consensus < min_consensus || !(weak_prior || consensus > state->gated)) return;
