@@ -38,13 +38,14 @@
 
 #include "methods/stereo_ekf/feature_model.h"
 #include "methods/stereo_ekf/least_squares.h"
+#include "methods/stereo_ekf/pose_velocity_filter.h"
 
 namespace slt {
 
 class StructureConsider {
  public:
-  using Matrix12d = Eigen::Matrix<double, 12, 12>;
-  using Vector12d = Eigen::Matrix<double, 12, 1>;
+  using Matrix12d = PoseVelocityFilter::Matrix12d;
+  using Vector12d = PoseVelocityFilter::Vector12d;
   using CrossCovariance = Eigen::Matrix<double, 12, FeatureModel::kStructureNoiseSize>;
 
   // The model's structures of a new reference pair, each uncorrelated with the filter.

@@ -32,6 +32,27 @@ LineTransferOptions Options(const std::string& direction, const std::string& res
   return o;
 }
 
+// Central differences of feature `feature`'s residual at `at` with respect to the 16 endpoint
+// coordinates of its four segments: [reference left | reference right | current left | current
+// right].
+Eigen::Matrix<double, 4, 16> NumericNoiseJacobian(const LineTransferOptions& options, const StereoRig& rig,
+                                                  const StereoFrame& ref, const StereoFrame& cur, int feature,
+                                                  const Rigid3d& at) {
+  const auto residual_of = [&](const Eigen::Matrix<double, 16, 1>& x) -> Eigen::Vector4d {
+    StereoFrame r = ref, c = cur;
+    r.left[feature].segment = x.segment<4>(0);
+    r.right[feature].segment = x.segment<4>(4);
+    c.left[feature].segment = x.segment<4>(8);
+    c.right[feature].segment = x.segment<4>(12);
+    FeatureBlock b;
+    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, rig, r, c, feature, at, false, &b));
+    return b.residual;
+  };
+  Eigen::Matrix<double, 16, 1> x;
+  x << ref.left[feature].segment, ref.right[feature].segment, cur.left[feature].segment, cur.right[feature].segment;
+  return CentralDifferenceJacobian<4, 16>(residual_of, x, 1e-5);
+}
+
 class LineTransferModelTest : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 TEST_P(LineTransferModelTest, ZeroResidualAtTruthAndJacobianMatches) {
@@ -68,20 +89,7 @@ TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
   const int feature = 1;
   FeatureBlock block;
   ASSERT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, ref, cur, feature, truth, true, &block));
-  // Perturb each of the 16 endpoint coordinates of the feature's four segments.
-  const auto residual_of = [&](const Eigen::Matrix<double, 16, 1>& x) -> Eigen::Vector4d {
-    StereoFrame r = ref, c = cur;
-    r.left[feature].segment = x.segment<4>(0);
-    r.right[feature].segment = x.segment<4>(4);
-    c.left[feature].segment = x.segment<4>(8);
-    c.right[feature].segment = x.segment<4>(12);
-    FeatureBlock b;
-    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, r, c, feature, truth, false, &b));
-    return b.residual;
-  };
-  Eigen::Matrix<double, 16, 1> x;
-  x << ref.left[feature].segment, ref.right[feature].segment, cur.left[feature].segment, cur.right[feature].segment;
-  const Eigen::Matrix<double, 4, 16> N = CentralDifferenceJacobian<4, 16>(residual_of, x, 1e-5);
+  const Eigen::Matrix<double, 4, 16> N = NumericNoiseJacobian(options, scene.rig, ref, cur, feature, truth);
   Eigen::Matrix4d expected = 1.3 * 1.3 * N * N.transpose();
   const bool distance = residual == "endpoint_distance";
   const Eigen::Vector4d floor = distance ? Eigen::Vector4d::Constant(0.05)
@@ -109,17 +117,8 @@ TEST(LineTransferModel, StructureJacobianIsTheReferenceEndpointsPartOfTheNoise) 
   EXPECT_EQ(model.StructureOf(feature), feature);
   FeatureModel::StructureJacobian g;
   ASSERT_TRUE(model.EvaluateStructureJacobian(feature, truth, &g));
-  const auto residual_of = [&](const Eigen::Matrix<double, 8, 1>& x) -> Eigen::Vector4d {
-    StereoFrame r = ref;
-    r.left[feature].segment = x.segment<4>(0);
-    r.right[feature].segment = x.segment<4>(4);
-    FeatureBlock b;
-    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, r, cur, feature, truth, false, &b));
-    return b.residual;
-  };
-  Eigen::Matrix<double, 8, 1> x;
-  x << ref.left[feature].segment, ref.right[feature].segment;
-  const Eigen::Matrix<double, 4, 8> expected = 1.3 * CentralDifferenceJacobian<4, 8>(residual_of, x, 1e-5);
+  const Eigen::Matrix<double, 4, 8> expected =
+      1.3 * NumericNoiseJacobian(options, scene.rig, ref, cur, feature, truth).leftCols<8>();
   EXPECT_GT(expected.norm(), 0.1);
   EXPECT_LT((expected - g).norm(), 1e-6 * expected.norm());
   // What is left of R is positive definite: the current segments' noise and the floor.
