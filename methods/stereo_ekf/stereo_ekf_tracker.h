@@ -10,7 +10,10 @@
 //      RANSAC over feature pairs (robust_pose_solver.h) seeds the update and its inlier set,
 //      and re-seeds the filter if the prediction is inconsistent with it;
 //   3. update (eq. 19) as an iterated EKF: Gauss-Newton on
-//      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update;
+//      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update; when
+//      the model describes its reference structure's error (FeatureModel::DescribesStructure),
+//      each step is instead the Schmidt-Kalman update of structure_consider.h, which keeps the
+//      state's correlation with that error;
 //   4. assess: lost (no update) or tracking; health (posterior cost against its chi-square
 //      bound) and the measurement-noise scale for the next frame;
 //   5. new reference pair (Sec. 3.3, the paper's feature replacement): when too few reference

@@ -1,6 +1,7 @@
 #include "methods/stereo_ekf/structure_consider.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace slt {
@@ -15,12 +16,14 @@ constexpr double kRelativeZeroVariance = 1e-14;
 void StructureConsider::Reset(const FeatureModel& model) {
   const int n = model.NumStructures();
   cross_.assign(n, CrossCovariance::Zero());
+  correlated_.assign(n, 0);
   versions_.resize(n);
   for (int s = 0; s < n; ++s) versions_[s] = model.StructureVersion(s);
 }
 
 void StructureConsider::Clear() {
   for (CrossCovariance& q : cross_) q.setZero();
+  std::fill(correlated_.begin(), correlated_.end(), 0);
 }
 
 void StructureConsider::Sync(const FeatureModel& model) {
@@ -29,11 +32,14 @@ void StructureConsider::Sync(const FeatureModel& model) {
     if (version == versions_[s]) continue;
     versions_[s] = version;
     cross_[s].setZero();
+    correlated_[s] = 0;
   }
 }
 
 void StructureConsider::Predict(const Matrix12d& transition) {
-  for (CrossCovariance& q : cross_) q = transition * q;
+  for (int s = 0; s < size(); ++s) {
+    if (correlated_[s]) cross_[s] = transition * cross_[s];
+  }
 }
 
 bool StructureConsider::Linearize(const FeatureModel& model, const WeightedFeature& feature, int index,
@@ -119,16 +125,23 @@ bool StructureConsider::Solve(const std::vector<WeightedFeature>& features, cons
 void StructureConsider::Commit(const std::vector<int>& inliers) {
   // Q~_s+ = Q~_s - (K~ J^) Q~_s - K~_i G~_i, K~_i = Lambda^-1 (A_i^T + A^T V N^-1 V_i^T), all
   // from the cross-covariances before the update; then Q_s+ = L Q~_s+.
-  for (CrossCovariance& q : cross_) {
+  // (A structure never measured since its Q was zeroed keeps Q = 0: skipped.)
+  for (int s = 0; s < size(); ++s) {
+    if (!correlated_[s]) continue;
+    CrossCovariance& q = cross_[s];
     q = lower_inverse_ * q;
     q -= kj_ * q;
   }
   for (int i : inliers) {
     Eigen::Matrix<double, 12, 4> k = (j_[i] + v_[i]).transpose();
     k.noalias() += atv_ninv_ * v_[i].transpose();
-    cross_[structure_[i]].noalias() -= information_llt_.solve(k) * whitened_jacobian_[i];
+    const int s = structure_[i];
+    cross_[s].noalias() -= information_llt_.solve(k) * whitened_jacobian_[i];
+    correlated_[s] = 1;
   }
-  for (CrossCovariance& q : cross_) q = lower_ * q;
+  for (int s = 0; s < size(); ++s) {
+    if (correlated_[s]) cross_[s] = lower_ * cross_[s];
+  }
 }
 
 }  // namespace slt

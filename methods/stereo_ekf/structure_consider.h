@@ -74,6 +74,10 @@ class StructureConsider {
 
  private:
   std::vector<CrossCovariance> cross_;
+  // Nonzero once structure s has been measured since its cross-covariance was last zeroed: the
+  // others are zero and stay zero until measured, so Predict and Commit skip them (most of a
+  // pair's lines are never measured: stereo-degenerate ones).
+  std::vector<char> correlated_;
   std::vector<int> versions_;
   // Per feature index (sized like the tracker's features), valid for the inliers of the last
   // Linearize / Solve.
