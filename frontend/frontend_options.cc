@@ -28,7 +28,7 @@ const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
           .Field("merge_distance_px", &D::merge_distance_px, AtLeast(0.0), "collinear merge: largest endpoint distance to the other line, px")
           .Field("merge_gap_px", &D::merge_gap_px, AtLeast(0.0), "collinear merge: largest gap along the line, px")
           .Field("merge_same_polarity", &D::merge_same_polarity, "collinear merge: only fragments with the same brighter side")
-          .Field("parallel_edge_px", &D::parallel_edge_px, InRange(0.0, 10.0), "second edge searched this far beside each snapped detection, px (0 = off)")
+          .Field("parallel_edge_px", &D::parallel_edge_px, InRange(0.0, 10.0), "second edges searched up to this far beside each detection, px (0 = off)")
           .Field("min_contrast", &D::min_contrast, AtLeast(0.0), "smallest grey-level difference between the two sides");
   return schema;
 }

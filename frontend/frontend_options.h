@@ -65,15 +65,19 @@ struct DetectionOptions {
   // merge across a change of polarity makes a segment whose contrast averages out and which
   // the contrast filter and the snap then drop (docs/frontend.md, the audit of the misses).
   bool merge_same_polarity = true;
-  // Look for a second, parallel edge this far (px) on either side of each snapped detection
-  // (parallel_edges.h: the two edges of a thin board, 2-4 px apart, which a detector on the
-  // smoothed image finds as one); 0 = off. Only with snap_detections. Off by default: at 3 px
-  // it gains 1.3 (room) and 4.8 (corridor) points of recall but costs ~1.3 ms in the
-  // new-reference frame, at the 30-ms budget (docs/frontend.md).
-  double parallel_edge_px = 0.0;
-  // Mean grey-level difference between the two sides of a segment (sampled 2 px off it) below
-  // which it is dropped: without a brighter side it has no orientation to match by.
-  double min_contrast = 8.0;
+  // Look for second, parallel edges up to this far (px) beside each detection (parallel_edges.h:
+  // the two edges of a thin board, 2-4 px apart, often one weak, which a detector on the
+  // smoothed image finds as one, in the mean intensity profile across the detection); 0 = off.
+  // 3.5 px: the pairs 2-4 px apart; 4-5 px gain 0.1-0.5 points of room recall (more in the
+  // corridor) but fail the KITTI excerpt's prediction test (docs/frontend.md).
+  double parallel_edge_px = 3.5;
+  // Mean grey-level difference between the two sides of a segment (sampled 2 px off it; for a
+  // second edge, its own step in the profile) below which it is dropped: without a brighter
+  // side it has no orientation to match by. 5: a step above the rendered images' noise of a
+  // two-pixel difference (sqrt(2) 2.2 grey levels), which the line-averaged profile of a
+  // second edge resolves (8 before the second edges; LSD at lsd_quant 1.5 reports no segment
+  // between 5 and 8, so it acts on the second edges: docs/frontend.md).
+  double min_contrast = 5.0;
 };
 
 struct MatchingOptions {

@@ -2,7 +2,7 @@
 // (issue 18's numbers; docs/frontend.md quotes the output in results/frontend/).
 //
 //   measure_frontend [--frames N] [--step K] [--method NAME] [--config FILE] [--out DIR]
-//                    [--scene TEXT] [--skip-detectors | --skip-sequences]
+//                    [--scene TEXT] [--skip-detectors | --skip-sequences] [--first F] [--detector NAME]
 //
 // Four scenes are rendered in memory (render/, default image settings: noise, defocus blur,
 // vignetting, exposure changes): the room loop at 752 x 480 (EuRoC's image size and focal
@@ -13,7 +13,8 @@
 //
 // 1. detectors.md: every detector of frontend/line_detection.h, with --config's detection options
 //    (snap_detections on the derivatives of the flow's pyramid, whose building is not timed) and the front end's merging,
-//    length and contrast filters, on frames 0, K, 2K, ... of both (both cameras): recall = the
+//    length and contrast filters, on frames 0, K, 2K, ... of both (both cameras; --first F: F, F + K, ...,
+//    the other frames, to tune on without tuning on the reported ones; --detector: that one only): recall = the
 //    fraction of the visible ground-truth segments at least 40 px long that a detection lies on
 //    (within 2 px and 2 deg, frontend_audit.h), precision = the fraction of detections that lie
 //    on some ground-truth segment, the RMS perpendicular endpoint error of those, and the
@@ -98,7 +99,8 @@ Table MarkdownTable(const std::vector<std::string>& titles, size_t left) {
   return table;
 }
 
-std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, const FrontEndOptions& front_end_options) {
+std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int first, int step, const std::string& only_detector,
+                          const FrontEndOptions& front_end_options) {
   const DetectionOptions& base = front_end_options.detection;
   Table table = MarkdownTable({"scene", "detector", "images", "GT segments >= 40 px", "recall", "precision",
                                "endpoint RMS, px", "segments per image", "ms per image",
@@ -116,7 +118,7 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
     std::vector<cv::Mat> images;
     std::vector<std::pair<int, int>> which;
     std::vector<std::vector<LineObservation>> photometric;
-    for (int k = 0; k < config.frames; k += step) {
+    for (int k = first; k < config.frames; k += step) {
       for (int c = 0; c < 2; ++c) {
         images.push_back(renderer.Image(k, c));
         which.emplace_back(k, c);
@@ -126,6 +128,7 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
       }
     }
     for (const auto& [type, name] : LineDetectorNames()) {
+      if (!only_detector.empty() && only_detector != name) continue;
       DetectionOptions options = base;  // --config's detection options, each detector in turn
       options.detector = type;
       const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
@@ -144,8 +147,8 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int step, co
           flow.BuildPyramid(images[i], &pyramid, 0);
           score.seconds -= std::chrono::duration<double>(Clock::now() - t1).count();
           SnapDetections(tracking, options.min_length_px, pyramid[1], &lines, &snap);
-          AddParallelEdges(options, tracking, images[i], pyramid[1], &lines, &snap);
         }
+        AddParallelEdges(options, tracking.snap_min_gradient, images[i], &lines);
         score.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
         const auto [k, c] = which[i];
         const StereoFrame& frame = sequence.sequence.frames[k];
@@ -279,13 +282,16 @@ int main(int argc, char** argv) {
   int frames = 200, step = 20;
   std::string method = "trifocal_line_ekf", out, config_path;
   bool skip_detectors = false, skip_sequences = false;
-  std::string only_scene;
+  std::string only_scene, only_detector;
+  int first = 0;
   AddMeasurementOptions(app, &frames, 2, &step, &out, "Write detectors.md and sequences.md into this folder");
   app.add_option("--method", method, "Tracker paired with the front end");
   app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
   app.add_flag("--skip-sequences", skip_sequences, "Only the detectors");
   app.add_option("--scene", only_scene, "Only the scenes whose name contains this (room, corridor, paper)");
+  app.add_option("--first", first, "Detector table: the first frame scored (then every --step)")->check(CLI::NonNegativeNumber);
+  app.add_option("--detector", only_detector, "Detector table: only this detector (lsd, edlines, ...)");
   if (const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend"); exit_code >= 0) return exit_code;
   return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
@@ -296,9 +302,11 @@ int main(int argc, char** argv) {
         config_path.empty() ? ""
                             : " --config " + std::filesystem::path(config_path).filename().string() + "` with `" +
                                   ReadJsonFile(config_path).dump();
-    const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s`.\n\n",
-                                            frames, step, method.c_str(), config_note.c_str());
-    const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, step, options);
+    const std::string selection = (first ? StringPrintf(" --first %d", first) : std::string()) +
+                                  (only_detector.empty() ? "" : " --detector " + only_detector);
+    const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s%s`.\n\n",
+                                            frames, step, method.c_str(), selection.c_str(), config_note.c_str());
+    const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, first, step, only_detector, options);
     const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, method, options);
     std::printf("%s\n%s", detectors.c_str(), sequences.c_str());
     if (!out.empty()) {

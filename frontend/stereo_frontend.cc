@@ -177,8 +177,10 @@ void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right,
   if (options_.detection.snap_detections) {
     for (int c = 0; c < 2; ++c) {
       SnapDetections(options_.tracking, options_.detection.min_length_px, current_[c][1], &detections_[c], &snap_);
-      AddParallelEdges(options_.detection, options_.tracking, c == 0 ? left : right, current_[c][1], &detections_[c], &snap_);
     }
+  }
+  for (int c = 0; c < 2; ++c) {
+    AddParallelEdges(options_.detection, options_.tracking.snap_min_gradient, c == 0 ? left : right, &detections_[c]);
   }
   if (!stats_.rematch) {
     // Detections on a live line would be dropped as duplicates after matching (AddNewLines):
