@@ -104,6 +104,26 @@ class FeatureModel {
                                Rigid3d* /*refined_cam_from_ref*/) {
     return false;
   }
+
+  // The error of the reference structure as "consider" parameters of a Schmidt filter
+  // (structure_consider.h; issue 16). A model that describes it gives each of its reference
+  // features s = 0 .. NumStructures()-1 a standard normal vector u_s (kStructureNoiseSize
+  // entries, unused ones with zero Jacobian) that is fixed while the reference pair is kept, and
+  // for feature `index` the Jacobian G = d r / d u of its residual; the covariance Evaluate
+  // returns must then be R_current + G G^T, R_current the part of the noise that is new in every
+  // frame. StructureVersion changes when the model replaces structure s's estimate (a refined
+  // line): its error is then a new u_s.
+  static constexpr int kStructureNoiseSize = 8;
+  using StructureJacobian = Eigen::Matrix<double, 4, kStructureNoiseSize>;
+  virtual bool DescribesStructure() const { return false; }
+  virtual int NumStructures() const { return 0; }
+  virtual int StructureOf(int /*index*/) const { return -1; }
+  virtual int StructureVersion(int /*structure*/) const { return 0; }
+  // False where Evaluate is false (rows left out by measured_rows: zero).
+  virtual bool EvaluateStructureJacobian(int /*index*/, const Rigid3d& /*cam_from_ref*/,
+                                         StructureJacobian* /*jacobian*/) const {
+    return false;
+  }
 };
 
 // A model whose features are matches of a reference feature with a current one (Match: a

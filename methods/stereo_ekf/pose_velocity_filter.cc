@@ -18,6 +18,7 @@ void PoseVelocityFilter::Reset(const StereoEkfOptions& options) {
   velocity_.setZero();
   covariance_.setZero();
   covariance_.bottomRightCorner<6, 6>() = InitialVelocityCovariance();
+  transition_.setIdentity();
 }
 
 Rigid3d PoseVelocityFilter::Step() const {
@@ -57,6 +58,8 @@ void PoseVelocityFilter::Predict() {
   new_pp.noalias() = x.lazyProduct(ad.transpose());
   new_pp.noalias() += y.lazyProduct(jl.transpose());
   covariance_.topLeftCorner<6, 6>() = 0.5 * (new_pp + new_pp.transpose());
+  transition_.topLeftCorner<6, 6>() = ad;
+  transition_.topRightCorner<6, 6>() = jl;
   covariance_.topRightCorner<6, 6>() = y;
   covariance_.bottomLeftCorner<6, 6>() = y.transpose();
 
@@ -80,6 +83,12 @@ void PoseVelocityFilter::Correct(const Vector6d& delta, const Matrix6d& posterio
   covariance_.topRightCorner<6, 6>() = new_pvp.transpose();
   covariance_.bottomRightCorner<6, 6>() = 0.5 * (Pvv + Pvv.transpose());
   cam_from_ref_ = ExpSE3(delta) * cam_from_ref_;
+}
+
+void PoseVelocityFilter::CorrectState(const Vector12d& delta, const Matrix12d& posterior_covariance) {
+  covariance_ = 0.5 * (posterior_covariance + posterior_covariance.transpose());
+  velocity_ += delta.tail<6>();
+  cam_from_ref_ = ExpSE3(delta.head<6>()) * cam_from_ref_;
 }
 
 void PoseVelocityFilter::Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance,

@@ -25,6 +25,7 @@ namespace slt {
 class PoseVelocityFilter {
  public:
   using Matrix12d = Eigen::Matrix<double, 12, 12>;
+  using Vector12d = Eigen::Matrix<double, 12, 1>;
 
   void Reset(const StereoEkfOptions& options);
   void Predict();
@@ -33,6 +34,10 @@ class PoseVelocityFilter {
   // `prior_pose_information` is P_pp^-1 at the prediction (the caller has it already).
   void Correct(const Vector6d& delta, const Matrix6d& posterior_pose_covariance,
                const Matrix6d& prior_pose_information);
+  // The update of a filter whose measurements also depend on consider parameters
+  // (structure_consider.h): the correction [d; dv] of pose and velocity and their posterior
+  // covariance, both computed by the caller.
+  void CorrectState(const Vector12d& delta, const Matrix12d& posterior_covariance);
   // Replaces pose and velocity after a detected failure: the pose from a measurement-only
   // solve with its covariance, and the initial (wide) velocity prior centred on the motion from
   // the previous pose when that pose is trusted, on zero otherwise (a previous pose from a
@@ -57,6 +62,8 @@ class PoseVelocityFilter {
   const Vector6d& velocity() const { return velocity_; }
   Matrix6d PoseCovariance() const { return covariance_.topLeftCorner<6, 6>(); }
   const Matrix12d& covariance() const { return covariance_; }
+  // F of the last Predict(): e_t = F e_t-1 (the identity before the first).
+  const Matrix12d& transition() const { return transition_; }
 
  private:
   Matrix6d InitialVelocityCovariance() const;
@@ -68,6 +75,7 @@ class PoseVelocityFilter {
   Rigid3d previous_cam_from_ref_;
   Vector6d velocity_ = Vector6d::Zero();
   Matrix12d covariance_ = Matrix12d::Zero();
+  Matrix12d transition_ = Matrix12d::Identity();
 };
 
 }  // namespace slt

@@ -52,6 +52,15 @@ StereoEkfTracker::StereoEkfTracker(const StereoEkfOptions& options, std::unique_
     median_scale_[d] = ChiSquareQuantile(0.5, 4) / ChiSquareQuantile(0.5, d);
   }
   reseed_gate_ = ChiSquareQuantile(0.999, 6);
+  if (model_->DescribesStructure()) {
+    // The consider update corrects pose and velocity jointly: the paper's velocity-only state
+    // (which resets the pose block before each prediction) has no pose to correlate.
+    if (options_.state != FilterState::kPoseVelocity) {
+      throw ConfigError("stereo EKF options: key 'filter.state': the model's structure consider "
+                        "(measurement.consider_structure) needs state pose_velocity");
+    }
+    consider_ = std::make_unique<StructureConsider>();
+  }
 }
 
 nlohmann::json StereoEkfTracker::Options() const {
@@ -77,6 +86,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   ref_from_world_covariance_.setZero();
   filter_.Reset(options_);
   reference_features_ = model_->SetReference(frame);
+  if (consider_) consider_->Reset(*model_);
   wants_new_features_ = false;
   TrackerOutput out;
   out.status = TrackingStatus::kNewReference;
@@ -99,6 +109,7 @@ void StereoEkfTracker::SetOutputPose(TrackerOutput* out) const {
 void StereoEkfTracker::Gate(const StereoFrame& frame, FrameState* state) {
   ++frames_since_start_;
   filter_.Predict();
+  if (consider_) consider_->Predict(filter_.transition());
   const Rigid3d predicted = filter_.cam_from_ref();
   model_->SetCurrent(frame);
   const int n = model_->NumFeatures();
@@ -124,6 +135,7 @@ void StereoEkfTracker::Gate(const StereoFrame& frame, FrameState* state) {
     if (!measurable) continue;
     f.block.covariance *= noise_scale_sq_;
     if (!f.FactorCovariance()) continue;
+    if (consider_ && !consider_->Linearize(*model_, f, i, predicted, std::sqrt(noise_scale_sq_))) continue;
     f.Whiten(f.block.residual, f.block.jacobian, &f.whitened_residual, &f.whitened_jacobian);
     valid_.push_back(i);
     // Eq. 20 with S = J P J^T + R. S >= R, so r^T S^-1 r <= r^T R^-1 r = |L^-1 r|^2, which the
@@ -193,6 +205,7 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
   // after a recovery lets outliers back in (feature-count sweep, 100 trials, 10 lines / 20 %
   // outliers 1.66 -> 2.18 deg mean; docs/derivations.md Sec. 5).
   filter_.Reseed(state->linearization, robust_covariance, /*previous_pose_trusted=*/healthy_);
+  if (consider_) consider_->Clear();
   ++counters_.reseeds;
 }
 
@@ -222,7 +235,20 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
   constexpr double kNoUpdate = std::numeric_limits<double>::infinity();
   // Normal equations of the MAP cost linearised at delta_k (docs/derivations.md):
   // (H + P^-1) delta = H delta_k - g; false if not solvable.
+  // With the structure consider (structure_consider.h) the step is the Schmidt filter's, in
+  // covariance form, and `solver` factors the posterior pose covariance instead.
+  StructureConsider::Vector12d consider_delta;
+  StructureConsider::Matrix12d consider_posterior;
   auto solve = [&](const NormalEquations& eq, Vector6d* solution) {
+    if (consider_) {
+      if (!consider_->Solve(features_, inliers_, filter_.covariance(), delta_k, &consider_delta,
+                            &consider_posterior) ||
+          !solver.Compute(consider_posterior.topLeftCorner<6, 6>())) {
+        return false;
+      }
+      *solution = consider_delta.head<6>();
+      return true;
+    }
     const Matrix6d h = eq.FullHessian();
     if (!solver.Compute(h + prior_information)) return false;
     *solution = solver.Solve(h * delta_k - eq.gradient);
@@ -276,11 +302,17 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     // the re-linearised solution, is what the outlier sweeps gain from (a second-order stopping
     // test that skipped it doubled the worst error at 30 % outliers).
     const Vector6d step = delta - delta_k;
-    if (solver.SquaredNorm(step) < options_.iteration_tolerance * options_.iteration_tolerance) break;
+    const double step_sq = consider_ ? step.dot(solver.Solve(step)) : solver.SquaredNorm(step);
+    if (step_sq < options_.iteration_tolerance * options_.iteration_tolerance) break;
   }
   ++counters_.updates;
   frame_information_ = ne.FullHessian();
-  filter_.Correct(delta, solver.Inverse(), prior_information);
+  if (consider_) {
+    filter_.CorrectState(consider_delta, consider_posterior);
+    consider_->Commit(inliers_);
+  } else {
+    filter_.Correct(delta, solver.Inverse(), prior_information);
+  }
   // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
   const Vector6d step = delta - delta_k;
   posterior_costs_.clear();
@@ -398,6 +430,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
     // Defensive: never hand out (or predict from) a non-finite state. Restart from the last
     // good pose, with zero velocity.
     filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4, /*previous_pose_trusted=*/false);
+    if (consider_) consider_->Clear();
     velocity_measured_ = false;
     healthy_ = false;
     state->used = 0;
@@ -415,7 +448,9 @@ void StereoEkfTracker::Assess(FrameState* state) {
 void StereoEkfTracker::RefineStructure(FrameState* state) {
   if (state->out.status == TrackingStatus::kLost) return;
   Rigid3d refined;
-  if (!model_->RefineStructure(filter_.cam_from_ref(), inliers_, &refined)) return;
+  const bool move = model_->RefineStructure(filter_.cam_from_ref(), inliers_, &refined);
+  if (consider_) consider_->Sync(*model_);
+  if (!move) return;
   filter_.MovePose(refined);
   SetOutputPose(&state->out);
 }
@@ -432,6 +467,7 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   ref_from_world_covariance_ = state->out.covariance;
   filter_.StartNewReferencePair();
   reference_features_ = model_->SetReference(frame);
+  if (consider_) consider_->Reset(*model_);
   wants_new_features_ = false;
   ++counters_.new_references;
   // On a frame without an update (possible when counting the lines inside the gate, the

@@ -10,7 +10,10 @@
 //      RANSAC over feature pairs (robust_pose_solver.h) seeds the update and its inlier set,
 //      and re-seeds the filter if the prediction is inconsistent with it;
 //   3. update (eq. 19) as an iterated EKF: Gauss-Newton on
-//      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update;
+//      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update; when
+//      the model describes its reference structure's error (FeatureModel::DescribesStructure),
+//      each step is instead the Schmidt-Kalman update of structure_consider.h, which keeps the
+//      state's correlation with that error;
 //   4. assess: lost (no update) or tracking; health (posterior cost against its chi-square
 //      bound) and the measurement-noise scale for the next frame;
 //   5. new reference pair (Sec. 3.3, the paper's feature replacement): when too few reference
@@ -34,6 +37,7 @@
 #include "methods/stereo_ekf/pose_velocity_filter.h"
 #include "methods/stereo_ekf/robust_pose_solver.h"
 #include "methods/stereo_ekf/stereo_ekf_options.h"
+#include "methods/stereo_ekf/structure_consider.h"
 
 namespace slt {
 
@@ -144,6 +148,9 @@ class StereoEkfTracker : public PoseTracker {
   // definite.
   Matrix6d frame_information_ = Matrix6d::Zero();
   PoseVelocityFilter filter_;
+  // When the model describes its reference structure's error (FeatureModel::DescribesStructure):
+  // the update treats it as consider parameters (structure_consider.h).
+  std::unique_ptr<StructureConsider> consider_;
   RobustPoseSolver robust_solver_;
   Counters counters_;
 

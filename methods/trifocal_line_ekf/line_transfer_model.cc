@@ -1,5 +1,6 @@
 #include "methods/trifocal_line_ekf/line_transfer_model.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -39,6 +40,14 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
                  "current_to_reference: transfers through planes this close are not measured (Sec. 4)")
           .Child("refinement", &O::refinement, ReferenceRefinementOptionsSchema(),
                  "joint refinement of the reference lines with keyframe poses (issue 16)")
+          .Field("consider_structure", &O::consider_structure,
+                 "the reference lines' error as consider parameters of the filter (Schmidt-Kalman)")
+          .Check("consider_structure", [](const O& o) {
+            return o.consider_structure && (o.direction != TransferDirection::kReferenceToCurrent ||
+                                            o.noise != MeasurementNoise::kPropagated)
+                       ? std::string("needs direction reference_to_current and noise propagated")
+                       : std::string();
+          })
           .Check("refinement.enabled", [](const O& o) {
             return o.refinement.enabled && (o.direction != TransferDirection::kReferenceToCurrent ||
                                             o.noise != MeasurementNoise::kPropagated)
@@ -175,6 +184,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     out.line_d_left_segment = d_left * ref.left.line_d_segment;
     out.line_d_right_segment = d_right * ref.right.line_d_segment;
     out.refined = false;
+    ++out.version;
   }
   if (refiner_) {
     refiner_->StartReference(static_cast<int>(reference_.size()));
@@ -377,7 +387,15 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
         Eigen::Matrix<double, 4, 4> d_tangent;
         d_tangent.topRows<2>().noalias() = d1_line * line.line_d_tangent;
         d_tangent.bottomRows<2>().noalias() = d2_line * line.line_d_tangent;
-        refined_covariance.noalias() = d_tangent * line.tangent_covariance * d_tangent.transpose();
+        if (options_.consider_structure) {
+          // As G G^T of EvaluateStructureJacobian, so that R - G G^T is the current noise also
+          // for a line whose covariance is huge in a direction the residual barely sees (where
+          // d C d^T and (d S)(d S)^T differ by their rounding).
+          const Eigen::Matrix4d d_sqrt = d_tangent * line.tangent_sqrt_covariance;
+          refined_covariance.noalias() = d_sqrt * d_sqrt.transpose();
+        } else {
+          refined_covariance.noalias() = d_tangent * line.tangent_covariance * d_tangent.transpose();
+        }
         line_covariance = &refined_covariance;
       }
     }
@@ -396,12 +414,55 @@ bool LineTransferModel::Evaluate(int index, const Rigid3d& cam_from_ref, bool wi
   return true;
 }
 
+Eigen::Matrix<double, 4, 6> LineTransferModel::ResidualLineJacobian(const Match& match,
+                                                                   const Rigid3d& cam_from_ref) const {
+  const StereoLine& cur = current_[match.current];
+  const PlueckerLine& line = reference_lines_[match.reference].line;
+  const Rigid3d& right_from_ref = RightFromRef(cam_from_ref);
+  Eigen::Matrix<double, 2, 3> d1, d2;
+  Residual(TransformPluecker(cam_from_ref, line).moment, cur.left, left_pixel_from_normalized_, rig_.left.fx, &d1,
+           nullptr);
+  Residual(TransformPluecker(right_from_ref, line).moment, cur.right, right_pixel_from_normalized_, rig_.right.fx,
+           &d2, nullptr);
+  Eigen::Matrix<double, 4, 6> out;
+  out.topRows<2>() = ImageLineLineJacobianProduct<2>(d1, cam_from_ref);
+  out.bottomRows<2>() = ImageLineLineJacobianProduct<2>(d2, right_from_ref);
+  return out;
+}
+
+bool LineTransferModel::EvaluateStructureJacobian(int index, const Rigid3d& cam_from_ref,
+                                                  StructureJacobian* jacobian) const {
+  const Match& match = matches_[index];
+  const ReferenceLine& line = reference_lines_[match.reference];
+  if (paper_direction_ || !propagated_noise_ || (reference_[match.reference].degenerate && !line.refined)) {
+    return false;
+  }
+  // The same columns as the reference part of Evaluate's noise Jacobian (times sigma), or the
+  // refined line's tangent: G G^T is the part of Evaluate's R the reference line contributes.
+  const Eigen::Matrix<double, 4, 6> d_line = ResidualLineJacobian(match, cam_from_ref);
+  if (line.refined) {
+    jacobian->leftCols<4>().noalias() = d_line * line.line_d_tangent * line.tangent_sqrt_covariance;
+    jacobian->rightCols<4>().setZero();
+  } else {
+    jacobian->leftCols<4>().noalias() = options_.endpoint_sigma_px * d_line * line.line_d_left_segment;
+    jacobian->rightCols<4>().noalias() = options_.endpoint_sigma_px * d_line * line.line_d_right_segment;
+  }
+  return true;
+}
+
 void LineTransferModel::TakeRefinedLine(int index, const Eigen::Matrix<double, 6, 4>& tangent_basis) {
   ReferenceLine& line = reference_lines_[index];
   line.line = refiner_->Line(index);
   line.line_d_tangent = tangent_basis;
   line.tangent_covariance = refiner_->Covariance(index);
+  if (options_.consider_structure) {
+    // A square root of a positive semi-definite matrix (an LLT fails on a singular one).
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(line.tangent_covariance);
+    line.tangent_sqrt_covariance =
+        eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  }
   line.refined = true;
+  ++line.version;
 }
 
 bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
@@ -425,7 +486,10 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
   if (!refiner_->AddKeyframeAndSolve(cam_from_ref, keyframe_observations_, &refined)) return false;
   for (int index = 0; index < static_cast<int>(reference_lines_.size()); ++index) {
     if (refiner_->Refined(index)) TakeRefinedLine(index, refiner_->TangentBasis(index));
-    if (refiner_->HeldBack(index)) reference_lines_[index].refined = false;
+    if (refiner_->HeldBack(index) && reference_lines_[index].refined) {
+      reference_lines_[index].refined = false;
+      ++reference_lines_[index].version;
+    }
   }
   *refined_cam_from_ref = refined;
   if (options_.refinement.move_pose) last_cam_from_ref_ = refined;

@@ -72,6 +72,12 @@ struct LineTransferOptions {
   // Joint refinement of the reference lines with keyframe poses (reference_refinement.h; issue
   // 16). Direction kReferenceToCurrent with the propagated R only.
   ReferenceRefinementOptions refinement;
+  // The reference lines' error as consider parameters of the filter (Schmidt-Kalman,
+  // methods/stereo_ekf/structure_consider.h): the filter keeps its correlation with each line's
+  // error instead of counting that error as new noise in every frame. Per line: the 8
+  // reference endpoint coordinates (sigma endpoint_sigma_px each) of a stereo line, the 4-dof
+  // tangent of a refined one. Direction reference_to_current with the propagated R only.
+  bool consider_structure = false;
 
   void Check(const std::string& where = "line transfer options", const std::string& path = "") const;
 };
@@ -111,6 +117,11 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
                 FeatureBlock* block) const override;
   bool RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
                        Rigid3d* refined_cam_from_ref) override;
+  bool DescribesStructure() const override { return options_.consider_structure; }
+  int NumStructures() const override { return static_cast<int>(reference_lines_.size()); }
+  int StructureOf(int index) const override { return matches_[index].reference; }
+  int StructureVersion(int structure) const override { return reference_lines_[structure].version; }
+  bool EvaluateStructureJacobian(int index, const Rigid3d& cam_from_ref, StructureJacobian* jacobian) const override;
 
   // The observations of feature `index` in the reference and the current pair, and the
   // reference pair's 3-D line in the reference frame (StereoPairLine): for methods
@@ -137,6 +148,8 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
     bool refined = false;
     Eigen::Matrix<double, 6, 4> line_d_tangent;
     Eigen::Matrix4d tangent_covariance;
+    Eigen::Matrix4d tangent_sqrt_covariance;  // S S^T = tangent_covariance (consider_structure)
+    int version = 0;                          // counts the estimates the line has had
   };
   // Stereo-matched lines of a frame, sorted by id, into `out`.
   void CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out);
@@ -156,6 +169,10 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
   Eigen::Vector2d Residual(const Eigen::Vector3d& line, const ObservedSegment& measured,
                            const Eigen::Matrix3d& pixel_from_normalized, double fx,
                            Eigen::Matrix<double, 2, 3>* d_line, Eigen::Matrix<double, 2, 4>* d_measured) const;
+
+  // d residual / d [n; d] of the reference line of match `match` at `cam_from_ref` (direction
+  // reference_to_current): rows 0-1 the left image's residual, 2-3 the right's.
+  Eigen::Matrix<double, 4, 6> ResidualLineJacobian(const Match& match, const Rigid3d& cam_from_ref) const;
 
   // right_from_left * cam_from_ref, cached for the last pose asked.
   const Rigid3d& RightFromRef(const Rigid3d& cam_from_ref) const;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <random>
 
 #include "geometry/numeric_jacobian.h"
@@ -29,6 +30,27 @@ LineTransferOptions Options(const std::string& direction, const std::string& res
   ReadLineTransferOptions(reader, &o);
   o.min_epipolar_angle_deg = 0.0;
   return o;
+}
+
+// Central differences of feature `feature`'s residual at `at` with respect to the 16 endpoint
+// coordinates of its four segments: [reference left | reference right | current left | current
+// right].
+Eigen::Matrix<double, 4, 16> NumericNoiseJacobian(const LineTransferOptions& options, const StereoRig& rig,
+                                                  const StereoFrame& ref, const StereoFrame& cur, int feature,
+                                                  const Rigid3d& at) {
+  const auto residual_of = [&](const Eigen::Matrix<double, 16, 1>& x) -> Eigen::Vector4d {
+    StereoFrame r = ref, c = cur;
+    r.left[feature].segment = x.segment<4>(0);
+    r.right[feature].segment = x.segment<4>(4);
+    c.left[feature].segment = x.segment<4>(8);
+    c.right[feature].segment = x.segment<4>(12);
+    FeatureBlock b;
+    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, rig, r, c, feature, at, false, &b));
+    return b.residual;
+  };
+  Eigen::Matrix<double, 16, 1> x;
+  x << ref.left[feature].segment, ref.right[feature].segment, cur.left[feature].segment, cur.right[feature].segment;
+  return CentralDifferenceJacobian<4, 16>(residual_of, x, 1e-5);
 }
 
 class LineTransferModelTest : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
@@ -67,26 +89,56 @@ TEST_P(LineTransferModelTest, PropagatedCovarianceMatchesNumericNoiseJacobian) {
   const int feature = 1;
   FeatureBlock block;
   ASSERT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, ref, cur, feature, truth, true, &block));
-  // Perturb each of the 16 endpoint coordinates of the feature's four segments.
-  const auto residual_of = [&](const Eigen::Matrix<double, 16, 1>& x) -> Eigen::Vector4d {
-    StereoFrame r = ref, c = cur;
-    r.left[feature].segment = x.segment<4>(0);
-    r.right[feature].segment = x.segment<4>(4);
-    c.left[feature].segment = x.segment<4>(8);
-    c.right[feature].segment = x.segment<4>(12);
-    FeatureBlock b;
-    EXPECT_TRUE(EvaluateOnFrames<LineTransferModel>(options, scene.rig, r, c, feature, truth, false, &b));
-    return b.residual;
-  };
-  Eigen::Matrix<double, 16, 1> x;
-  x << ref.left[feature].segment, ref.right[feature].segment, cur.left[feature].segment, cur.right[feature].segment;
-  const Eigen::Matrix<double, 4, 16> N = CentralDifferenceJacobian<4, 16>(residual_of, x, 1e-5);
+  const Eigen::Matrix<double, 4, 16> N = NumericNoiseJacobian(options, scene.rig, ref, cur, feature, truth);
   Eigen::Matrix4d expected = 1.3 * 1.3 * N * N.transpose();
   const bool distance = residual == "endpoint_distance";
   const Eigen::Vector4d floor = distance ? Eigen::Vector4d::Constant(0.05)
                                          : Eigen::Vector4d(1e-4, 0.05, 1e-4, 0.05);
   expected.diagonal() += floor.array().square().matrix();
   EXPECT_LT((expected - block.covariance).norm(), 1e-6 * expected.norm());
+}
+
+// The structure Jacobian G (consider_structure) is sigma times the reference endpoints' columns
+// of the noise Jacobian, so that R = R_current + G G^T.
+TEST(LineTransferModel, StructureJacobianIsTheReferenceEndpointsPartOfTheNoise) {
+  TinyScene scene;
+  LineTransferOptions options = Options("reference_to_current", "endpoint_distance");
+  options.endpoint_sigma_px = 1.3;
+  options.consider_structure = true;
+  const Rigid3d truth = SomeMotion();
+  const StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(truth);
+  const int feature = 1;
+  LineTransferModel model(options);
+  model.Reset(scene.rig);
+  ASSERT_EQ(model.SetReference(ref), 4);
+  ASSERT_EQ(model.SetCurrent(cur), 4);
+  ASSERT_TRUE(model.DescribesStructure());
+  EXPECT_EQ(model.NumStructures(), 4);
+  EXPECT_EQ(model.StructureOf(feature), feature);
+  FeatureModel::StructureJacobian g;
+  ASSERT_TRUE(model.EvaluateStructureJacobian(feature, truth, &g));
+  const Eigen::Matrix<double, 4, 8> expected =
+      1.3 * NumericNoiseJacobian(options, scene.rig, ref, cur, feature, truth).leftCols<8>();
+  EXPECT_GT(expected.norm(), 0.1);
+  EXPECT_LT((expected - g).norm(), 1e-6 * expected.norm());
+  // What is left of R is positive definite: the current segments' noise and the floor.
+  FeatureBlock block;
+  ASSERT_TRUE(model.Evaluate(feature, truth, true, &block));
+  const Eigen::Matrix4d current = block.covariance - g * g.transpose();
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(current).eigenvalues()(0), 0.04 * 0.04);
+  options.consider_structure = false;
+  EXPECT_FALSE(LineTransferModel(options).DescribesStructure());
+}
+
+TEST(LineTransferModel, ConsiderStructureNeedsTheReferenceToCurrentDirectionAndPropagatedNoise) {
+  LineTransferOptions options;
+  options.consider_structure = true;
+  EXPECT_NO_THROW(options.Check());
+  options.direction = TransferDirection::kCurrentToReference;
+  EXPECT_THROW(options.Check(), ConfigError);
+  options.direction = TransferDirection::kReferenceToCurrent;
+  options.noise = MeasurementNoise::kFixed;
+  EXPECT_THROW(options.Check(), ConfigError);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllVariants, LineTransferModelTest,
