@@ -22,6 +22,8 @@ const OptionSchema<DetectionOptions>& DetectionOptionsSchema() {
           .Field("lsd_sigma_scale", &D::lsd_sigma_scale, InRange(0.1, 5.0), "LSD: Gaussian sigma = this / lsd_scale (OpenCV's sigma_scale)")
           .Field("lsd_angle_deg", &D::lsd_angle_deg, InRange(1.0, 90.0), "LSD: level-line angle tolerance, deg (OpenCV's ang_th)")
           .Field("lsd_density", &D::lsd_density, InRange(0.0, 1.0), "LSD: least density of aligned points in a rectangle (OpenCV's density_th; only with lsd_refine)")
+          .Field("edlines_gradient_threshold", &D::edlines_gradient_threshold, InRange(1, 255),
+                 "EDLines: least gradient of an edge pixel (OpenCV's GradientThresholdValue)")
           .Field("snap_detections", &D::snap_detections, "move detected segments onto the edge by the tracking snap")
           .Field("min_length_px", &D::min_length_px, InRange(2.0, 1e4), "shortest segment kept, px")
           .Field("merge_angle_deg", &D::merge_angle_deg, InRange(0.0, 45.0), "collinear merge: largest angle, deg")

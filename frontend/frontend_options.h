@@ -23,7 +23,8 @@ enum class LineDetectorType {
 
 struct DetectionOptions {
   // LSD by the measurements of docs/frontend.md: EDLines is 2-3x faster and, snapped, as
-  // precise, but it gave trifocal_line_ekf a worse KITTI trajectory (0.48 m against 0.41 m).
+  // precise (with edlines_gradient_threshold 12 it finds more of the rendered edges), but it
+  // gives trifocal_line_ekf a worse trajectory on the KITTI excerpt.
   LineDetectorType detector = LineDetectorType::kLsd;
   // LSD's bound on the gradient quantisation error (von Gioi et al.; OpenCV's `quant`): pixels
   // with a gradient magnitude below quant / sin(22.5 deg) are not used. Below OpenCV's 2 it
@@ -49,6 +50,11 @@ struct DetectionOptions {
   double lsd_sigma_scale = 0.6;
   double lsd_angle_deg = 22.5;
   double lsd_density = 0.7;
+  // EDLines' gradient threshold (OpenCV's EdgeDrawing GradientThresholdValue, its default 20):
+  // pixels whose gradient (Prewitt, on the image smoothed with sigma 1) is below it are not
+  // edge candidates. The rendered rooms' missed edges are weak steps of 5-10 grey levels
+  // (docs/frontend.md, the audit of the misses).
+  int edlines_gradient_threshold = 20;
   // Move each detected segment onto the image's edge by the tracker's edge snap
   // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not
   // when the snap is off (tracking.snap_radius_px 0).

@@ -39,7 +39,9 @@ class LsdDetector : public LineDetector {
 
 class EdlinesDetector : public LineDetector {
  public:
-  EdlinesDetector() : ed_(cv::ximgproc::createEdgeDrawing()) {}
+  explicit EdlinesDetector(const DetectionOptions& options) : ed_(cv::ximgproc::createEdgeDrawing()) {
+    ed_->params.GradientThresholdValue = options.edlines_gradient_threshold;
+  }
   void Detect(const cv::Mat& grey, std::vector<Segment2d>* segments) override {
     lines_.clear();
     ed_->detectEdges(grey);
@@ -143,7 +145,7 @@ class CannyHoughDetector : public LineDetector {
 std::unique_ptr<LineDetector> MakeLineDetector(const DetectionOptions& options) {
   switch (options.detector) {
     case LineDetectorType::kLsd: return std::make_unique<LsdDetector>(options);
-    case LineDetectorType::kEdlines: return std::make_unique<EdlinesDetector>();
+    case LineDetectorType::kEdlines: return std::make_unique<EdlinesDetector>(options);
     case LineDetectorType::kFld: return std::make_unique<FldDetector>();
     case LineDetectorType::kBinaryDescriptor: return std::make_unique<BinaryDescriptorDetector>();
     case LineDetectorType::kCannyHough: return std::make_unique<CannyHoughDetector>();

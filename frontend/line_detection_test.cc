@@ -71,6 +71,28 @@ TEST(DetectLines, KeepsAnEdgeWhosePolarityChangesAsTwoSegments) {
   EXPECT_TRUE(on_edge(DetectLines(*detector, options, image)).empty());
 }
 
+// EDLines' gradient threshold decides the weakest step it sees: a 6-grey-level edge (the weak
+// steps the rendered rooms' misses are made of, docs/frontend.md) is below OpenCV's default
+// 20 and above 12.
+TEST(EdlinesDetector, GradientThresholdSetsTheWeakestStepFound) {
+  cv::Mat image(120, 240, CV_8UC1, cv::Scalar(100));
+  image(cv::Rect(0, 0, 240, 60)).setTo(106);  // a horizontal edge at row 60, 6 levels
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 0.8);
+  const auto finds_edge = [&](int threshold) {
+    DetectionOptions options;
+    options.detector = LineDetectorType::kEdlines;
+    options.edlines_gradient_threshold = threshold;
+    std::vector<Segment2d> segments;
+    MakeLineDetector(options)->Detect(image, &segments);
+    for (const Segment2d& s : segments) {
+      if (std::abs(s[1] - 59.5) < 1.5 && std::abs(s[3] - 59.5) < 1.5 && Length(s) > 150.0) return true;
+    }
+    return false;
+  };
+  EXPECT_FALSE(finds_edge(20));
+  EXPECT_TRUE(finds_edge(12));
+}
+
 TEST(LiesAlong, ComparesDirectionEitherWayRoundAndBothEndpointsDistanceToTheLine) {
   const Segment2d line(0, 0, 100, 0);
   const double cos_2deg = std::cos(2.0 * M_PI / 180.0);
