@@ -307,7 +307,9 @@ int main(int argc, char** argv) {
   bool skip_detectors = false, skip_sequences = false;
   std::string only_scene, only_detector;
   int first = 0;
-  AddMeasurementOptions(app, &frames, 2, &step, &out, "Write detectors.md and sequences.md into this folder");
+  app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
+  app.add_option("--step", step, "Detector table: every step-th frame")->check(CLI::Range(1, 100000));
+  app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
   app.add_option("--method", method, "Tracker paired with the front end");
   app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
