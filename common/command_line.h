@@ -65,13 +65,4 @@ inline CLI::Option* AddTrackerOptions(CLI::App& app, std::string* method, std::s
   return app.add_option("--method,-m", *method, "Tracker name (track --list)");
 }
 
-// The measurement tools on rendered sequences: --frames per sequence (at least `min_frames`),
-// every --step-th frame measured, --out where the tables go.
-inline void AddMeasurementOptions(CLI::App& app, int* frames, int min_frames, int* step, std::string* out,
-                                  const char* out_help) {
-  app.add_option("--frames", *frames, "Frames per sequence")->check(CLI::Range(min_frames, 100000));
-  app.add_option("--step", *step, "Measure every step-th frame")->check(CLI::Range(1, 100000));
-  app.add_option("--out", *out, out_help);
-}
-
 }  // namespace slt

@@ -39,8 +39,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/command_line.h"
@@ -51,6 +53,7 @@
 #include "frontend/frontend_audit.h"
 #include "frontend/image_tracking.h"
 #include "frontend/parallel_edges.h"
+#include "frontend/rendered_pair.h"
 #include "render/sequence_renderer.h"
 
 namespace slt {
@@ -58,11 +61,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A rendered scene of the measurement, simulated once for both tables.
+// A scene of the measurement, simulated once for both tables and rendered on demand.
 struct MeasuredScene {
+  MeasuredScene(std::string name, const nlohmann::json& config) : name(std::move(name)), rendered(config) {}
   std::string name;
-  SimulationConfig config;
-  SimulatedSequence sequence;
+  RenderedSequence rendered;
   // The scene's own front-end options, over --config's (JSON merge patch).
   nlohmann::json options = nlohmann::json::object();
 };
@@ -81,18 +84,18 @@ nlohmann::json PaperSceneOptions(const StereoRig& rig) {
             {"max_previous_px", 2.0}}}};
 }
 
-std::vector<MeasuredScene> Scenes(int frames, const std::string& only_scene) {
+// A deque: each scene's renderer refers to its own sequence, which must not move.
+std::deque<MeasuredScene> Scenes(int frames, const std::string& only_scene) {
   const std::vector<std::pair<std::string, nlohmann::json>> all = {
       {"room 752x480 (loop)", RenderedRoomConfig(frames, true)},
       {"corridor 640x480 (forward)", RenderedCorridorConfig(frames)},
       {"paper scene 640x480 (paper motion)", RenderedPaperConfig(frames)},
       {"room 640x480 (loop, default rig)", RenderedRoomConfig(frames, false)}};
-  std::vector<MeasuredScene> scenes;
+  std::deque<MeasuredScene> scenes;
   for (const auto& [name, json] : all) {
     if (name.find(only_scene) == std::string::npos) continue;
-    const SimulationConfig config = SimulationConfigFromJson(json, "measure_frontend");
-    scenes.push_back({name, config, Simulate(config)});
-    if (name.rfind("paper", 0) == 0) scenes.back().options = PaperSceneOptions(scenes.back().sequence.true_rig);
+    scenes.emplace_back(name, json);
+    if (name.rfind("paper", 0) == 0) scenes.back().options = PaperSceneOptions(scenes.back().rendered.rig());
   }
   return scenes;
 }
@@ -104,7 +107,7 @@ Table MarkdownTable(const std::vector<std::string>& titles, size_t left) {
   return table;
 }
 
-std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int first, int step, const std::string& only_detector,
+std::string DetectorTable(const std::deque<MeasuredScene>& scenes, int first, int step, const std::string& only_detector,
                           const FrontEndOptions& front_end_options) {
   const DetectionOptions& base = front_end_options.detection;
   Table table = MarkdownTable({"scene", "detector", "images", "GT segments >= 40 px", "recall", "precision",
@@ -112,9 +115,8 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int first, i
                                "of those, photometrically visible", "recall of those"},
                               2);
   for (const MeasuredScene& scene : scenes) {
-    const SimulationConfig& config = scene.config;
-    const SimulatedSequence& sequence = scene.sequence;
-    const SequenceRenderer renderer(sequence, config);
+    const SimulationConfig& config = scene.rendered.config();
+    const SimulatedSequence& sequence = scene.rendered.sequence();
     // The same images without sensor noise, for the photometric visibility of the ground truth.
     SimulationConfig noise_free = config;
     noise_free.images.read_noise = 0.0;
@@ -125,7 +127,7 @@ std::string DetectorTable(const std::vector<MeasuredScene>& scenes, int first, i
     std::vector<std::vector<LineObservation>> photometric;
     for (int k = first; k < config.frames; k += step) {
       for (int c = 0; c < 2; ++c) {
-        images.push_back(renderer.Image(k, c));
+        images.push_back(scene.rendered.Image(k, c));
         which.emplace_back(k, c);
         const StereoFrame& frame = sequence.sequence.frames[k];
         photometric.push_back(PhotometricallyVisible(c == 0 ? frame.left : frame.right, noise_free_renderer.Image(k, c),
@@ -187,7 +189,7 @@ Trajectory TrackObservations(const std::string& method, const StereoSequence& ob
   return trajectory;
 }
 
-std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::string& method,
+std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const std::string& method,
                           const FrontEndOptions& common_options) {
   Table table = MarkdownTable(
       {"scene", "frames", "path, m", "detection frames", "new references", "lost", "stereo matches", "not judged",
@@ -202,9 +204,8 @@ std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::s
                                "lines described per frame", "tracker, ms"},
                               1);
   for (const MeasuredScene& scene : scenes) {
-    const SimulationConfig& config = scene.config;
-    const SimulatedSequence& sequence = scene.sequence;
-    const SequenceRenderer renderer(sequence, config);
+    const SimulationConfig& config = scene.rendered.config();
+    const SimulatedSequence& sequence = scene.rendered.sequence();
     nlohmann::json scene_options = ToJson(common_options);
     scene_options.merge_patch(scene.options);
     const FrontEndOptions options = FrontEndOptionsFromJson(scene_options, "measure_frontend: " + scene.name);
@@ -226,7 +227,7 @@ std::string SequenceTable(const std::vector<MeasuredScene>& scenes, const std::s
     long described = 0;
     double tracker_seconds = 0.0;
     for (int k = 0; k < config.frames; ++k) {
-      const cv::Mat left = renderer.Image(k, 0), right = renderer.Image(k, 1);
+      const cv::Mat left = scene.rendered.Image(k, 0), right = scene.rendered.Image(k, 1);
       const double time = sequence.sequence.frames[k].time;
       const ImageTrackingStep step = image_tracker.Step(left, right, time);
       audit.AddFrame(k, front_end, *step.frame);
@@ -307,7 +308,9 @@ int main(int argc, char** argv) {
   bool skip_detectors = false, skip_sequences = false;
   std::string only_scene, only_detector;
   int first = 0;
-  AddMeasurementOptions(app, &frames, 2, &step, &out, "Write detectors.md and sequences.md into this folder");
+  app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
+  app.add_option("--step", step, "Detector table: every step-th frame")->check(CLI::Range(1, 100000));
+  app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
   app.add_option("--method", method, "Tracker paired with the front end");
   app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
@@ -319,7 +322,7 @@ int main(int argc, char** argv) {
   return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
     const FrontEndOptions options = FrontEndOptionsFromJson(ReadOptionsFile(config_path), config_path);
-    const std::vector<MeasuredScene> scenes = Scenes(frames, only_scene);
+    const std::deque<MeasuredScene> scenes = Scenes(frames, only_scene);
     // The options measured, when not the defaults: the config's file name and its content.
     const std::string config_note =
         config_path.empty() ? ""

@@ -1,5 +1,6 @@
-// For the front end's tests: rendered sequences (frontend_audit.h's room at the default 640 x 480
-// rig, the paper scene; default image settings: noise, blur, vignetting on), rendered on demand.
+// Rendered sequences of frontend_audit.h's configs (default image settings: noise, blur,
+// vignetting on), rendered on demand: the scenes of measure_frontend and of the front end's tests
+// (the room at the default 640 x 480 rig, the paper scene).
 #pragma once
 
 #include "frontend/frontend_audit.h"
@@ -9,11 +10,15 @@
 namespace slt {
 
 // A rendered sequence of frontend_audit.h's configs; only the frames asked for are rendered.
+// Neither copied nor moved: the renderer refers to the sequence and config it holds.
 class RenderedSequence {
  public:
   explicit RenderedSequence(const nlohmann::json& config)
       : config_(SimulationConfigFromJson(config, "rendered_pair.h")), sequence_(Simulate(config_)), renderer_(sequence_, config_) {}
+  RenderedSequence(const RenderedSequence&) = delete;
+  RenderedSequence& operator=(const RenderedSequence&) = delete;
 
+  const SimulationConfig& config() const { return config_; }
   const SimulatedSequence& sequence() const { return sequence_; }
   const StereoRig& rig() const { return sequence_.true_rig; }
   cv::Mat Image(int frame, int camera) const { return renderer_.Image(frame, camera); }

@@ -17,6 +17,8 @@ using Segment2d = Eigen::Vector4d;  // [u1 v1 u2 v2]
 
 inline Eigen::Vector3d Homogeneous(const Eigen::Vector2d& p) { return {p.x(), p.y(), 1.0}; }
 
+inline double SegmentLength(const Segment2d& s) { return (s.tail<2>() - s.head<2>()).norm(); }
+
 // l = [a; 1] x [b; 1]: the line through two points, with its 3x4 Jacobian with respect to
 // [a; b] when asked for.
 Eigen::Vector3d LineThroughPoints(const Eigen::Vector2d& a, const Eigen::Vector2d& b,

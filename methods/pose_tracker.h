@@ -83,6 +83,13 @@ inline const char* StatusReasonName(StatusReason reason) {
 inline constexpr double kMinAgreeingFraction = 0.25;
 inline bool FewAgree(int agreeing, int measurable) { return agreeing < kMinAgreeingFraction * measurable; }
 
+// An observed segment the trackers measure: finite and at least kMinSegmentLengthPx long (a
+// shorter one fixes neither its line's direction nor the order of its endpoints).
+inline constexpr double kMinSegmentLengthPx = 5.0;
+inline bool UsableSegment(const Segment2d& segment) {
+  return segment.allFinite() && SegmentLength(segment) >= kMinSegmentLengthPx;
+}
+
 // A lost frame's pose for the trackers that keep a per-frame twist of their last measured
 // motion (taylor_line_sfm, elqursh_three_line; the EKFs damp the velocity in their state):
 // the twist is multiplied by `decay` on every lost frame (0 holds the pose) and applied on the

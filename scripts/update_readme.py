@@ -6,9 +6,9 @@ README quotes comes from the committed summaries, so the two cannot disagree.
 
 A block is `<!-- generated:NAME -->...<!-- /generated -->`, inline in a sentence or around a
 table; its content is replaced by what GENERATORS[NAME] makes of results/. Run it after
-regenerating results (`run_experiment ...`, `bench_table1 --out results/table1`). With --check it
-writes nothing and exits with 1 and a diff when README.md differs from what the results give
-(the CTest test readme_results_test). Methods are read from the summaries, so a tracker added to
+regenerating results (`run_experiment ...`, `bench_table1 --out results/table1`,
+`measure_frontend --out results/frontend`). With --check it writes nothing and exits with 1 and a
+diff when README.md differs from what the results give (the CTest test readme_results_test). Methods are read from the summaries, so a tracker added to
 the registry appears in the tables once its results exist. Python 3 standard library only.
 """
 
@@ -107,6 +107,19 @@ class Results:
                 return json.load(f)
         except OSError as e:
             raise ResultsError("%s: %s" % (path, e.strerror))
+
+    def markdown_rows(self, *parts):
+        """(path, rows) of the first Markdown table in a file, each row a dict by column title."""
+        path = self.path(*parts)
+        try:
+            with open(path, encoding="utf-8") as f:
+                lines = [l.strip() for l in f if l.strip().startswith("|")]
+        except OSError as e:
+            raise ResultsError("%s: %s" % (path, e.strerror))
+        cells = [[c.strip() for c in l.strip("|").split("|")] for l in lines]
+        if len(cells) < 3:
+            raise ResultsError("%s: no Markdown table" % path)
+        return path, [dict(zip(cells[0], row)) for row in cells[2:]]
 
 
 def is_number(v):
@@ -222,6 +235,23 @@ def datasets_sentence(r):
             "after 95 frames" % (sig(path, 2), sig(at("trifocal_line_ekf", kitti, "ate_trans_m_mean"), 2),
                                  sig(100 * at("trifocal_line_ekf", kitti, "ate_trans_m_mean") / path, 2), others,
                                  mm(at("trifocal_line_ekf", euroc, "end_gap_m_mean"))))
+
+
+# The scenes of results/frontend/detectors.md (measure_frontend) the README names, in its order.
+DETECTOR_SCENES = (("room 752x480 (loop)", "room, 752 × 480"), ("corridor 640x480 (forward)", "corridor"),
+                   ("paper scene 640x480 (paper motion)", "paper scene"))
+
+
+def lsd_recall(r):
+    """The front end's LSD: recall of the visible ground-truth segments per rendered scene."""
+    path, rows = r.markdown_rows("frontend", "detectors.md")
+    found = []
+    for scene, label in DETECTOR_SCENES:
+        row = [x for x in rows if x.get("scene") == scene and x.get("detector") == "lsd"]
+        if not row or "recall" not in row[0]:
+            raise ResultsError("%s: no recall of lsd on '%s'" % (path, scene))
+        found.append("%.1f %% (%s)" % (100 * float(row[0]["recall"]), label))
+    return "%s and %s" % (", ".join(found[:-1]), found[-1])
 
 
 LONG_RUNS = (("long_room", "room loop, 1428 frames"), ("long_corridor", "corridor walk, 301 frames"),
@@ -345,6 +375,7 @@ GENERATORS = {
     "loop_table": loop_table,
     "long_runs_table": long_runs_table,
     "datasets_sentence": datasets_sentence,
+    "lsd_recall": lsd_recall,
     "feature_count_table": feature_count_table,
     "faithful_fixed_r": faithful_fixed_r,
     "fixed_endpoints": endpoints_comparison("fixed"),

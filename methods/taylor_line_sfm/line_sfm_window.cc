@@ -6,16 +6,11 @@
 
 #include "dataset/association.h"
 #include "geometry/plucker.h"
+#include "methods/pose_tracker.h"
 #include "optim/ceres_logging.h"
 
 namespace slt {
 namespace {
-
-// Segments shorter than this (px) are ignored: their direction is noise (as in the EKFs'
-// feature models).
-constexpr double kMinSegmentLengthPx = 5.0;
-
-double SegmentLength(const Segment2d& s) { return (s.tail<2>() - s.head<2>()).norm(); }
 
 // Union-find over frame indices, for the connected group of the newest frame.
 int Root(std::vector<int>& parent, int i) {
@@ -37,7 +32,7 @@ void CollectWindowObservations(const std::vector<LineObservation>& image, std::v
                                std::vector<WindowObservation>* out) {
   out->clear();
   for (const LineObservation& o : SortedById(image, scratch)) {
-    if (o.segment.allFinite() && SegmentLength(o.segment) >= kMinSegmentLengthPx) out->push_back({o.id, o.segment});
+    if (UsableSegment(o.segment)) out->push_back({o.id, o.segment});
   }
 }
 

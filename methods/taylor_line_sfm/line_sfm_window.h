@@ -180,8 +180,8 @@ class LineSfmWindow {
 };
 
 // The observations of one image for the window: sorted by id (dataset/association.h
-// SortedById, `scratch` for the sorted copy when one is needed), segments that are finite and
-// at least 5 px long (shorter ones fix no direction).
+// SortedById, `scratch` for the sorted copy when one is needed), the segments the trackers can
+// measure (methods/pose_tracker.h UsableSegment).
 void CollectWindowObservations(const std::vector<LineObservation>& image, std::vector<LineObservation>* scratch,
                                std::vector<WindowObservation>* out);
 

@@ -6,12 +6,11 @@
 
 #include "dataset/association.h"
 #include "geometry/trifocal.h"
+#include "methods/pose_tracker.h"
 
 namespace slt {
 namespace {
 
-// Segments shorter than this (px) are ignored: their direction is noise.
-constexpr double kMinSegmentLengthPx = 5.0;
 // The floor of a propagated R on the theta rows of the (theta, lambda) residual (rad).
 constexpr double kCovarianceFloorRad = 1e-4;
 
@@ -115,10 +114,7 @@ void LineTransferModel::Reset(const StereoRig& rig) {
 
 bool LineTransferModel::MakeSegment(const Segment2d& segment, const PinholeCamera& camera,
                                     ObservedSegment* out) const {
-  if (!segment.allFinite() ||
-      (segment.tail<2>() - segment.head<2>()).norm() < kMinSegmentLengthPx) {
-    return false;
-  }
+  if (!UsableSegment(segment)) return false;
   Eigen::Matrix<double, 3, 4> d_pixel_line;
   const Eigen::Vector3d pixel_line = LineFromSegment(segment, &d_pixel_line);
   // K^T: the normalised line (eq. 6-7).

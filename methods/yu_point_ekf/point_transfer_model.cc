@@ -8,6 +8,7 @@
 #include "geometry/line2d.h"
 #include "geometry/se3.h"
 #include "geometry/trifocal.h"
+#include "methods/pose_tracker.h"
 
 namespace slt {
 namespace {
@@ -22,8 +23,6 @@ inline Eigen::Vector2d ProjectToPixel(const PinholeCamera& camera, const Eigen::
   return {camera.fx * x + camera.cx, camera.fy * y + camera.cy};
 }
 
-// Segments shorter than this (px) are ignored (their endpoint order is not defined).
-constexpr double kMinSegmentLengthPx = 5.0;
 // Stereo endpoint pairing: below this difference (px) between the epipolar distances of the two
 // pairings, the segments' directions decide.
 constexpr double kPairingAmbiguityPx = 1.0;
@@ -172,15 +171,11 @@ bool PointTransferModel::Usable(const ReferencePoint& point) const {
 void PointTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLinePoints>* out) {
   const std::vector<LineObservation>& left = SortedById(frame.left, &left_sorted_);
   const std::vector<LineObservation>& right = SortedById(frame.right, &right_sorted_);
-  const double min_length = kMinSegmentLengthPx;
-  const auto usable = [&](const Segment2d& s) {
-    return s.allFinite() && (s.tail<2>() - s.head<2>()).norm() >= min_length;
-  };
   out->clear();
   JoinById(left, right, [&](size_t i, size_t j) {
     const Segment2d& l = left[i].segment;
     const Segment2d& r = right[j].segment;
-    if (!usable(l) || !usable(r)) return;
+    if (!UsableSegment(l) || !UsableSegment(r)) return;
     StereoLinePoints line;
     line.id = left[i].id;
     line.left_segment = l;
