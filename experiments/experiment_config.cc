@@ -174,6 +174,8 @@ const OptionSchema<DatasetSpec>& DatasetSchema() {
           .Field("first_frame", &D::first_frame, AtLeast(0), "first stereo pair run")
           .Field("end_frame", &D::end_frame, AnyNumber(), "stereo pairs [first_frame, end_frame); -1 = to the end")
           .Field("ground_truth", &D::ground_truth, {}, "overrides the dataset's own ground truth file (\"\" = its own)")
+          .Field("tracker_options", &D::tracker_options,
+                 "per tracker name: options merged over the method's own on this dataset (its platform's motion)")
           .OnRead([](D* d) {
             const std::filesystem::path path = std::filesystem::path(d->path).lexically_normal();
             if (d->label.empty()) d->label = path.filename().string();
@@ -191,6 +193,17 @@ const OptionSchema<DatasetSpec>& DatasetSchema() {
                  })
           .Check("end_frame", [](const D& d) {
             return d.end_frame != -1 && d.end_frame <= d.first_frame ? "must be > first_frame, or -1 (to the end)" : "";
+          })
+          .Check("tracker_options", [](const D& d) {
+            for (const auto& [name, options] : d.tracker_options.items()) {
+              try {
+                FindTracker(name);
+              } catch (const std::invalid_argument& e) {
+                return std::string(e.what());
+              }
+              if (!options.is_object()) return "'" + name + "': expected an object of tracker options";
+            }
+            return std::string();
           });
   return schema;
 }
@@ -379,6 +392,17 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
   if (!c.datasets.empty()) {
     // Frame counts are known when the datasets are opened; errors are read at the last frame.
     if (c.metrics_frame != -1) reader.Fail("metrics_frame", "must be \"last\" with \"datasets\"");
+    // Each method's options on each dataset must make a tracker, as its own do (ReadMethod).
+    for (size_t i = 0; i < c.datasets.size(); ++i) {
+      for (const MethodSpec& m : c.methods) {
+        if (!c.datasets[i].tracker_options.contains(m.name)) continue;
+        try {
+          CreateTracker(m.name, MethodOptionsOn(m, c.datasets[i]), where);
+        } catch (const ConfigError& e) {
+          RethrowUnder(e, where, IndexedKey("datasets", i) + ".tracker_options." + m.name);
+        }
+      }
+    }
     return c;
   }
   // Every sweep point must give a valid simulation, and the metrics frame must exist in it.
@@ -398,6 +422,12 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
     }
   }
   return c;
+}
+
+nlohmann::json MethodOptionsOn(const MethodSpec& method, const DatasetSpec& dataset) {
+  nlohmann::json options = method.options;
+  if (dataset.tracker_options.contains(method.name)) options.merge_patch(dataset.tracker_options.at(method.name));
+  return options;
 }
 
 ExperimentConfig ReadExperimentConfig(const std::string& path) {

@@ -80,6 +80,11 @@ struct DatasetSpec {
   int first_frame = 0;
   int end_frame = -1;
   std::string ground_truth;
+  // Tracker options of the platform that recorded it, per method name, merged over each
+  // method's own options for the runs on this dataset (MethodOptionsOn): a tracker's motion
+  // prior is a property of the platform, not of the tracker or the detector (a car at 10 Hz
+  // moves ~1.2 m per frame, the paper's protocol ~1 cm; docs/datasets.md).
+  nlohmann::json tracker_options = nlohmann::json::object();
 };
 
 struct ExperimentConfig {
@@ -118,6 +123,10 @@ nlohmann::json ExperimentConfigToJson(const ExperimentConfig& config);
 // each method's description and resolved Options(), and the full simulation config of every
 // sweep point. Creates each tracker once.
 nlohmann::json ResolvedConfigJson(const ExperimentConfig& config);
+
+// The options `method` runs with on `dataset`: its own, with the dataset's tracker_options for
+// its tracker name merged over them (JSON merge patch, RFC 7396: the dataset's keys win).
+nlohmann::json MethodOptionsOn(const MethodSpec& method, const DatasetSpec& dataset);
 
 // A point of the sweep: one value per axis (empty for no sweep).
 struct SweepPoint {

@@ -233,6 +233,29 @@ TEST(ExperimentConfig, DatasetsAreTheSweep) {
   EXPECT_EQ(ExperimentConfigToJson(back), ExperimentConfigToJson(c));
 }
 
+TEST(ExperimentConfig, DatasetTrackerOptionsAreMergedOverTheMethodsOwn) {
+  // A platform's options (KITTI's car: a velocity prior of metres per frame) reach the methods
+  // that take them on that dataset only; the method's other options stay.
+  const ExperimentConfig c = ExperimentConfigFromJson(
+      {{"trials", 1},
+       {"datasets",
+        {{{"path", "kitti"}, {"tracker_options", {{"trifocal_line_ekf", {{"filter", {{"initial_velocity_sigma_m", 1.0}}}}}}}},
+         {{"path", "euroc"}}}},
+       {"methods",
+        {{{"name", "trifocal_line_ekf"}, {"options", {{"filter", {{"min_features", 9}, {"initial_velocity_sigma_m", 0.1}}}}}},
+         "taylor_line_sfm"}}},
+      "cfg.json");
+  const json on_kitti = MethodOptionsOn(c.methods[0], c.datasets[0]);
+  EXPECT_EQ(on_kitti.at("filter").at("initial_velocity_sigma_m"), 1.0);
+  EXPECT_EQ(on_kitti.at("filter").at("min_features"), 9);
+  EXPECT_EQ(MethodOptionsOn(c.methods[0], c.datasets[1]), c.methods[0].options);
+  EXPECT_EQ(MethodOptionsOn(c.methods[1], c.datasets[0]), c.methods[1].options);
+  EXPECT_EQ(CreateTracker("trifocal_line_ekf", on_kitti)->Options().at("filter").at("initial_velocity_sigma_m"), 1.0);
+  // Round trip.
+  const ExperimentConfig back = ExperimentConfigFromJson(ExperimentConfigToJson(c), "back.json");
+  EXPECT_EQ(ExperimentConfigToJson(back), ExperimentConfigToJson(c));
+}
+
 TEST(ExperimentConfig, DatasetErrorsNameTheKey) {
   const json one = {{{"path", "d"}}};
   EXPECT_EQ(ErrorOf({{"datasets", one}}), "cfg.json: key 'trials': must be 1 with \"datasets\" (a recorded sequence has no random draws)");
@@ -252,6 +275,13 @@ TEST(ExperimentConfig, DatasetErrorsNameTheKey) {
             "cfg.json: key 'metrics_frame': must be \"last\" with \"datasets\"");
   EXPECT_NE(ErrorOf({{"trials", 1}, {"datasets", one}, {"frontend", {{"detektion", 1}}}}).find("cfg.json: key 'frontend.detektion'"),
             std::string::npos);
+  EXPECT_NE(ErrorOf({{"trials", 1}, {"datasets", {{{"path", "d"}, {"tracker_options", {{"trifocal_ekf", json::object()}}}}}}})
+                .find("cfg.json: key 'datasets[0].tracker_options': unknown method 'trifocal_ekf'"),
+            std::string::npos);
+  EXPECT_EQ(ErrorOf({{"trials", 1},
+                     {"methods", {"trifocal_line_ekf"}},
+                     {"datasets", {{{"path", "d"}, {"tracker_options", {{"trifocal_line_ekf", {{"filter", {{"initial_velocity_sigma_m", -1}}}}}}}}}}}),
+            "cfg.json: key 'datasets[0].tracker_options.trifocal_line_ekf.filter.initial_velocity_sigma_m': must be > 0");
 }
 
 // The configs users have written keep loading, and every committed config.resolved.json reads

@@ -145,12 +145,14 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   r.method_index = job.method;
   r.point_index = job.point;
   r.trial = job.trial;
-  std::unique_ptr<PoseTracker> tracker =
-      CreateTracker(method.name, method.options, config.name + ": method '" + method.Id() + "' options");
+  const std::string where = config.name + ": method '" + method.Id() + "' options";
   if (!config.datasets.empty()) {
-    RunDatasetTrial(config, *tracker, config.datasets[job.point], &r);
+    const DatasetSpec& dataset = config.datasets[job.point];
+    std::unique_ptr<PoseTracker> tracker = CreateTracker(method.name, MethodOptionsOn(method, dataset), where);
+    RunDatasetTrial(config, *tracker, dataset, &r);
     return r;
   }
+  std::unique_ptr<PoseTracker> tracker = CreateTracker(method.name, method.options, where);
   const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
   const SimulatedSequence sim = Simulate(sim_config);
   const StereoSequence& sequence = sim.sequence;

@@ -22,10 +22,12 @@ enum class LineDetectorType {
 };
 
 struct DetectionOptions {
-  // LSD by the measurements of docs/frontend.md: EDLines is 2-3x faster and, snapped, as
-  // precise (with edlines_gradient_threshold 12 it finds more of the rendered edges), but it
-  // gives trifocal_line_ekf a worse trajectory on the KITTI excerpt.
-  LineDetectorType detector = LineDetectorType::kLsd;
+  // EDLines by the measurements of docs/frontend.md: at edlines_gradient_threshold 12, with the
+  // second-edge search, it finds more of the rendered rooms' and corridor's edges than LSD at
+  // the same precision, in under half of LSD's time per image. (LSD was the default while the
+  // stereo EKF's start on KITTI, which its lines happened to suit, was tuned for the paper's
+  // slow motion: the platform's prior is now the dataset's, docs/datasets.md.)
+  LineDetectorType detector = LineDetectorType::kEdlines;
   // LSD's bound on the gradient quantisation error (von Gioi et al.; OpenCV's `quant`): pixels
   // with a gradient magnitude below quant / sin(22.5 deg) are not used. Below OpenCV's 2 it
   // finds more low-contrast edges; alone (quant 1) their imprecision cost stereo matches and
@@ -53,8 +55,8 @@ struct DetectionOptions {
   // EDLines' gradient threshold (OpenCV's EdgeDrawing GradientThresholdValue, its default 20):
   // pixels whose gradient (Prewitt, on the image smoothed with sigma 1) is below it are not
   // edge candidates. The rendered rooms' missed edges are weak steps of 5-10 grey levels
-  // (docs/frontend.md, the audit of the misses).
-  int edlines_gradient_threshold = 20;
+  // (docs/frontend.md, the audit of the misses); 12 finds most of them at no loss of precision.
+  int edlines_gradient_threshold = 12;
   // Move each detected segment onto the image's edge by the tracker's edge snap
   // (tracking.snap_*, line_tracking.h: SnapDetections) and drop those it cannot place; not
   // when the snap is off (tracking.snap_radius_px 0).
@@ -74,15 +76,17 @@ struct DetectionOptions {
   // Look for second, parallel edges up to this far (px) beside each detection (parallel_edges.h:
   // the two edges of a thin board, 2-4 px apart, often one weak, which a detector on the
   // smoothed image finds as one, in the mean intensity profile across the detection); 0 = off.
-  // 3.5 px: the pairs 2-4 px apart; 4-5 px gain 0.1-0.5 points of room recall (more in the
-  // corridor) but fail the KITTI excerpt's prediction test (docs/frontend.md).
+  // 3.5 px: the pairs 2-4 px apart (with LSD, 4-5 px gained 0.1-0.5 points of room recall but
+  // failed the KITTI excerpt's prediction test); EDLines, the default, also misses the weaker
+  // edge of a pair, and without the search finds under 90 % of the rendered room's edges
+  // (docs/frontend.md).
   double parallel_edge_px = 3.5;
   // Mean grey-level difference between the two sides of a segment (sampled 2 px off it; for a
   // second edge, its own step in the profile) below which it is dropped: without a brighter
   // side it has no orientation to match by. 5: a step above the rendered images' noise of a
   // two-pixel difference (sqrt(2) 2.2 grey levels), which the line-averaged profile of a
   // second edge resolves (8 before the second edges; LSD at lsd_quant 1.5 reports no segment
-  // between 5 and 8, so it acts on the second edges: docs/frontend.md).
+  // between 5 and 8, so with LSD it acts on the second edges only: docs/frontend.md).
   double min_contrast = 5.0;
 };
 
@@ -186,8 +190,10 @@ struct MotionOptions {
   FlowSeed seed = FlowSeed::kPrediction;
   // Pyramid levels above the image when a line's seed is not a predicted camera motion (the
   // first frames, a tracker without a prediction, lines the pair cannot place): the search
-  // must reach further. tracking.pyramid_levels applies to predicted lines.
-  int unpredicted_pyramid_levels = 3;
+  // must reach further. tracking.pyramid_levels applies to predicted lines. 4: with 3 the
+  // first tracked frame of a KITTI run (1.2 m per frame, no prediction yet) can lose or
+  // mis-track enough lines to spoil the stereo EKF's start (docs/datasets.md, large motion).
+  int unpredicted_pyramid_levels = 4;
   // Descriptor re-matching: when fewer than this fraction of the live lines survive the flow,
   // the pair's lines are detected and stereo-matched, and each lost line is looked for among
   // them by MSLD near its predicted position (frame_matching.h); found, it keeps its id

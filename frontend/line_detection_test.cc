@@ -119,6 +119,7 @@ TEST(MakeLineDetector, LsdTakesItsParametersFromTheOptions) {
     return n;
   };
   DetectionOptions options;
+  options.detector = LineDetectorType::kLsd;  // LSD's parameters, whatever the default detector
   options.lsd_sigma_scale = 0.4;
   EXPECT_EQ(long_segments(options), 2);
   options.lsd_sigma_scale = 3.0;  // a blur of 5 px merges the bar's edges

@@ -242,14 +242,14 @@ DETECTOR_SCENES = (("room 752x480 (loop)", "room, 752 × 480"), ("corridor 640x4
                    ("paper scene 640x480 (paper motion)", "paper scene"))
 
 
-def lsd_recall(r):
-    """The front end's LSD: recall of the visible ground-truth segments per rendered scene."""
+def detector_recall(r):
+    """The front end's default detector (EDLines): recall of the visible ground-truth segments per rendered scene."""
     path, rows = r.markdown_rows("frontend", "detectors.md")
     found = []
     for scene, label in DETECTOR_SCENES:
-        row = [x for x in rows if x.get("scene") == scene and x.get("detector") == "lsd"]
+        row = [x for x in rows if x.get("scene") == scene and x.get("detector") == "edlines"]
         if not row or "recall" not in row[0]:
-            raise ResultsError("%s: no recall of lsd on '%s'" % (path, scene))
+            raise ResultsError("%s: no recall of edlines on '%s'" % (path, scene))
         found.append("%.1f %% (%s)" % (100 * float(row[0]["recall"]), label))
     return "%s and %s" % (", ".join(found[:-1]), found[-1])
 
@@ -375,7 +375,7 @@ GENERATORS = {
     "loop_table": loop_table,
     "long_runs_table": long_runs_table,
     "datasets_sentence": datasets_sentence,
-    "lsd_recall": lsd_recall,
+    "detector_recall": detector_recall,
     "feature_count_table": feature_count_table,
     "faithful_fixed_r": faithful_fixed_r,
     "fixed_endpoints": endpoints_comparison("fixed"),
