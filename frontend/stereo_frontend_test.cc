@@ -131,6 +131,7 @@ TEST(StereoFrontEnd, WithAMeasuredMotionNewLinesAreMatchedInThePreviousPairAndCh
   judged.lines = WithBarSecondEdges(paper.sequence());
   const auto run = [&](double max_previous_px) {
     FrontEndOptions options;
+    options.detection.detector = LineDetectorType::kLsd;  // the detections measured below
     options.matching.max_previous_px = max_previous_px;
     options.matching.previous_pairs = 2;
     // The paper scene's range and row check (measure_frontend's PaperSceneOptions).

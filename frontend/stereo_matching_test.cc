@@ -114,7 +114,8 @@ TEST(StereoMatching, AVerificationIsWeighedBeforeTheUniquenessTests) {
   // test weighs only those: every match is correct and more bars are matched than the plain
   // matcher's correct matches; a verification that passes nothing leaves no match.
   const RenderedPaper paper(21);
-  const FrontEndOptions options;
+  FrontEndOptions options;
+  options.detection.detector = LineDetectorType::kLsd;  // the detections measured below
   const ProjectedGroundTruth truth[2] = {paper.Projected(20, 0), paper.Projected(20, 1)};
   const MatchedPair plain = MatchFrame(20, options, paper);
   std::vector<int> common;
