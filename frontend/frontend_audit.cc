@@ -267,8 +267,10 @@ FrontEndAudit::FrontEndAudit(const SimulatedSequence& sequence, const AuditCrite
                                       ProjectedGroundTruth(sequence.lines, criteria)} {}
 
 void FrontEndAudit::AddFrame(int k, const StereoFrontEnd& front_end, const StereoFrame& frame) {
-  for (int c = 0; c < 2; ++c) projected_[c] = ProjectedGroundTruthAt(sequence_, k, c, criteria_);
   const FrontEndFrameStats& stats = front_end.last_stats();
+  // The matches were made in the pair of frame k - detection_lag.
+  const int matched_frame = stats.detected ? k - stats.detection_lag : k;
+  for (int c = 0; c < 2; ++c) projected_[c] = ProjectedGroundTruthAt(sequence_, matched_frame, c, criteria_);
   if (stats.detected) {
     for (const StereoMatch& m : front_end.last_matches()) {
       const PairVerdict verdict = JudgeStereoPair(projected_[0], projected_[1], front_end.last_detections(0)[m.left].segment,
@@ -277,6 +279,9 @@ void FrontEndAudit::AddFrame(int k, const StereoFrontEnd& front_end, const Stere
       if (verdict == PairVerdict::kCorrect) ++result_.matches_correct;
       if (verdict == PairVerdict::kUnjudged) ++result_.matches_unjudged;
     }
+  }
+  if (matched_frame != k) {
+    for (int c = 0; c < 2; ++c) projected_[c] = ProjectedGroundTruthAt(sequence_, k, c, criteria_);
   }
   // Tracks: the lines of the output frame (left and right hold the same ids in the same order).
   for (auto& [id, track] : tracks_) track.seen = false;

@@ -108,11 +108,16 @@ struct MatchingOptions {
   // 3-D line cover the same rows in both images unless an end is occluded or clipped, a pair of
   // two different lines that share some rows rarely does.
   double min_union_overlap = 0.0;
-  // Temporal verification (stereo_matching.h, SeenInPreviousPair): a new match whose 3-D line,
-  // moved into the previous stereo pair by the tracker's predicted camera motion, does not lie
-  // within this distance of an edge in both previous images is dropped; px (0 = off; no check
-  // on the first pair or without a prediction).
+  // Temporal verification (stereo_matching.h, SeenInPreviousPair; 0 = off): a new match's 3-D
+  // line, moved into an earlier stereo pair by the camera motion between them, must lie within
+  // this distance of an edge in both earlier images; px. With a tracker that measures its
+  // motion (image_tracking.h), new lines are then matched in the previous pair and checked
+  // against the previous_pairs pairs before it by the measured motions, the uniqueness tests
+  // weighing only the candidates that pass (stereo_frontend.h); otherwise (the first pairs, a
+  // lost frame) the chosen matches are checked against the previous pair by the predicted
+  // motion.
   double max_previous_px = 0.0;
+  int previous_pairs = 1;
   // Disparity range of a rectified rig, pixels (left u minus right u at the same row).
   double min_disparity_px = 0.0;
   double max_disparity_px = 256.0;
@@ -144,6 +149,11 @@ struct TrackingOptions {
   double inlier_px = 1.0;
   double min_inlier_fraction = 0.6;
   double max_rms_px = 0.5;
+  // The snap's refit (below) twice drops the edge points farther than this from the fitted
+  // line (and loses the line when under snap_min_fraction of the places remain): on sharp
+  // edges a tight bound loses a segment whose edge points lie on two edges (another edge met
+  // at one end, a crossing line) instead of fitting a line between them.
+  double snap_inlier_px = 1.0;
   // A tracked segment shorter than this (e.g. after clipping at the border) is lost.
   double min_length_px = 25.0;
   // Edge snapping after the refit (line_tracking.h): every snap_spacing_px along the refitted

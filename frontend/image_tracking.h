@@ -37,6 +37,8 @@ class ImageTracker {
   StereoFrontEnd& front_end_;
   PoseTracker& tracker_;
   std::optional<Rigid3d> next_motion_;
+  // The motion between the last two frames as the tracker measured it (both not lost).
+  std::optional<Rigid3d> measured_motion_;
   // The last measured (not lost) pose, for the constant-velocity extrapolation.
   std::optional<Rigid3d> last_measured_;
 };

@@ -268,7 +268,10 @@ bool LiesAlong(const Segment2d& line, const Segment2d& segment, double cos_max_a
 std::vector<ImageLine> DetectLines(LineDetector& detector, const DetectionOptions& options, const cv::Mat& grey) {
   if (grey.type() != CV_8UC1) throw std::invalid_argument("DetectLines: expected an 8-bit grey image");
   std::vector<Segment2d> segments;
-  detector.Detect(grey, &segments);
+  // Detectors read the pixels as one block (LSD, EdgeDrawing): a view into a larger image (the
+  // flow pyramid's level 0, which the front end detects on for the measured-motion check) is
+  // copied first.
+  detector.Detect(grey.isContinuous() ? grey : grey.clone(), &segments);
   if (options.merge_same_polarity) {
     // Each fragment oriented by its own gradient first, so that only fragments with the same
     // brighter side merge: an edge whose brighter side changes along it (a shelf's front

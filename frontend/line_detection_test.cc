@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
 namespace slt {
@@ -39,6 +40,27 @@ TEST(MergeCollinearSegments, OrientedFragmentsOfOppositeDirectionStayApart) {
 // An edge whose brighter side changes half way along it (a shelf's edge under a light and a
 // dark book): two segments of one polarity each. Merged across the change the two halves'
 // contrasts cancel and the contrast filter drops the line.
+TEST(DetectLines, EveryDetectorFindsTheSameLinesInAViewIntoALargerImage) {
+  // A view (not continuous in memory) into a larger image, as the flow pyramid's level 0 is:
+  // each detector finds what it finds in a copy of the same pixels.
+  cv::Mat large(300, 400, CV_8UC1, cv::Scalar(60));
+  cv::rectangle(large, cv::Point(80, 60), cv::Point(250, 180), cv::Scalar(180), cv::FILLED);
+  cv::line(large, cv::Point(40, 230), cv::Point(330, 200), cv::Scalar(200), 5);
+  cv::GaussianBlur(large, large, cv::Size(5, 5), 1.0);
+  const cv::Mat view = large(cv::Rect(20, 20, 340, 260));
+  ASSERT_FALSE(view.isContinuous());
+  for (const auto& [type, name] : LineDetectorNames()) {
+    DetectionOptions options;
+    options.detector = type;
+    const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
+    const std::vector<ImageLine> in_view = DetectLines(*detector, options, view);
+    const std::vector<ImageLine> in_copy = DetectLines(*detector, options, view.clone());
+    ASSERT_EQ(in_view.size(), in_copy.size()) << name;
+    EXPECT_GE(in_copy.size(), 2u) << name;
+    for (size_t i = 0; i < in_view.size(); ++i) EXPECT_LT((in_view[i].segment - in_copy[i].segment).norm(), 1e-9) << name;
+  }
+}
+
 TEST(DetectLines, KeepsAnEdgeWhosePolarityChangesAsTwoSegments) {
   cv::Mat image(120, 240, CV_8UC1, cv::Scalar(100));
   image(cv::Rect(20, 30, 100, 30)).setTo(160);   // above the edge at row 60, left: brighter

@@ -163,7 +163,7 @@ bool SnapSegmentToEdges(const TrackingOptions& options, const cv::Mat& derivativ
   for (int pass = 0; pass < 2; ++pass) {
     int kept = 0;
     for (const Eigen::Vector2d& p : *edge_points) {
-      if (std::abs(line.head<2>().dot(p) + line.z()) <= options.inlier_px) (*edge_points)[kept++] = p;
+      if (std::abs(line.head<2>().dot(p) + line.z()) <= options.snap_inlier_px) (*edge_points)[kept++] = p;
     }
     edge_points->resize(kept);
     if (kept < needed || !FitLine(*edge_points, nullptr, kept, &line)) return false;

@@ -23,7 +23,7 @@
 //          takes pyramids made by BuildPyramid); the maximum, located to sub-pixel by a
 //          parabola through its neighbours, is an edge point when it is at least
 //          snap_min_gradient and not on the search's border. The line is refitted by total
-//          least squares to the edge points (twice, dropping points over inlier_px from it),
+//          least squares to the edge points (twice, dropping points over snap_inlier_px from it),
 //          and the refitted endpoints are projected onto it. Lost when fewer than
 //          max(3, snap_min_fraction M) edge points remain; a tracked line also when the standard error of the
 //          fitted direction, sigma = rms / sqrt(sum_m (t_m - mean t)^2) over the K edge points

@@ -123,6 +123,37 @@ TEST(SnapSegmentToEdges, MovesASegmentOntoTheEdgeAndLosesItWithoutOne) {
   EXPECT_FALSE(SnapSegmentToEdges(options, pyramid[1], &flat, &workspace));
 }
 
+TEST(SnapSegmentToEdges, ATightInlierBoundKeepsAnotherEdgeAtOneEndFromTiltingTheLine) {
+  // A horizontal edge at v = 100 up to u = 220; beyond it another edge of the same polarity,
+  // 0.8 px lower (a crossing bar's edge met at one end, as on the paper scene). A segment along
+  // v = 100 from u = 50 to 250: with the 1-px bound the edge points of the last 30 px are
+  // fitted too and the line tilts (measured 0.16 deg); with 0.3 px they are dropped and the
+  // line lies on the edge.
+  cv::Mat image(240, 320, CV_8UC1);
+  for (int v = 0; v < image.rows; ++v) {
+    for (int u = 0; u < image.cols; ++u) {
+      const double edge = u <= 220 ? 100.0 : 100.8;
+      image.at<uchar>(v, u) = cv::saturate_cast<uchar>(100.0 + 60.0 * std::tanh((v - edge) / 0.8));
+    }
+  }
+  TrackingOptions options;
+  const LineFlowTracker tracker(options);
+  ImagePyramid pyramid;
+  tracker.BuildPyramid(image, &pyramid);
+  SnapWorkspace workspace;
+  const auto snapped = [&](double snap_inlier_px) {
+    options.snap_inlier_px = snap_inlier_px;
+    Segment2d segment(50.0, 100.0, 250.0, 100.0);
+    EXPECT_TRUE(SnapSegmentToEdges(options, pyramid[1], &segment, &workspace));
+    return segment;
+  };
+  const auto tilt_deg = [](const Segment2d& s) { return std::abs(std::atan2(s[3] - s[1], s[2] - s[0])) * 180.0 / M_PI; };
+  const Segment2d loose = snapped(1.0), tight = snapped(0.3);
+  EXPECT_GT(tilt_deg(loose), 0.1);
+  EXPECT_LT(tilt_deg(tight), 0.02);
+  EXPECT_LT(DistanceToLine(tight, Eigen::Vector2d(100.0, 100.0), Eigen::Vector2d(1.0, 0.0)), 0.1);
+}
+
 TEST(SnapSegmentToEdges, LosesAShortSegmentWhoseDirectionTheEdgePointsDoNotDetermine) {
   // The step edge with image noise (20 grey levels, seeded): the edge points scatter, which
   // leaves the direction of a 30-px segment less determined than that of an 80-px one.

@@ -23,10 +23,13 @@ StereoFrontEnd::StereoFrontEnd(const FrontEndOptions& options, const StereoRig& 
       rig_(rig),
       detector_(MakeLineDetector(options.detection)),
       matcher_(options.matching, rig),
-      flow_{LineFlowTracker(options.tracking, 1), LineFlowTracker(options.tracking, 2)} {}
+      flow_{LineFlowTracker(options.tracking, 1), LineFlowTracker(options.tracking, 2)},
+      earlier_(options.matching.max_previous_px > 0.0 ? options.matching.previous_pairs : 0),
+      later_from_earlier_(earlier_.size()) {}
 
 const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& right, double time,
-                                           bool detect_new_lines, const std::optional<Rigid3d>& predicted_motion) {
+                                           bool detect_new_lines, const std::optional<Rigid3d>& predicted_motion,
+                                           const std::optional<Rigid3d>& measured_motion) {
   for (const cv::Mat* image : {&left, &right}) {
     if (image->type() != CV_8UC1 || image->cols != rig_.width || image->rows != rig_.height) {
       throw std::invalid_argument("front end: expected 8-bit grey images of " + std::to_string(rig_.width) + " x " +
@@ -42,15 +45,50 @@ const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& r
   flow_[1].BuildPyramid(right, &current_[1], levels);
   stats_.times.track += Since(t0);
   lost_.clear();
+  if (!earlier_.empty()) later_from_earlier_[0] = measured_motion;
+  // New lines verified by the measured motion: detected and matched in the previous pair,
+  // checked against the pairs before it, then tracked into this pair with the live lines.
+  checks_.clear();
+  if (detect_new_lines && started_ && options_.matching.max_previous_px > 0.0) {
+    Rigid3d previous_from_earlier;
+    for (int h = 0; h < earlier_stored_ && later_from_earlier_[h].has_value(); ++h) {
+      previous_from_earlier = previous_from_earlier * *later_from_earlier_[h];
+      checks_.push_back({{earlier_[h][0][1], earlier_[h][1][1]}, previous_from_earlier.Inverse()});
+    }
+  }
+  const bool lagged = !checks_.empty();
+  if (lagged) {
+    DetectAndMatch(previous_[0][0], previous_[1][0], previous_, checks_, true);
+    stats_.detection_lag = 1;
+    AddNewLines();
+  }
   if (started_) Track(predicted_motion);
   const int before = static_cast<int>(stats_.tracked + stats_.lost);
   stats_.rematch = started_ && before > 0 && stats_.tracked < options_.motion.rematch_below_fraction * before;
-  if (detect_new_lines || !started_ || stats_.rematch) DetectAndMatch(left, right, predicted_motion);
+  const bool detect_here = (detect_new_lines && !lagged) || !started_;
+  if (detect_here || stats_.rematch) {
+    // Verified, when asked, against the previous pair by the predicted motion.
+    checks_.clear();
+    if (started_ && predicted_motion.has_value()) {
+      checks_.push_back({{previous_[0][1], previous_[1][1]}, predicted_motion->Inverse()});
+    }
+    DetectAndMatch(left, right, current_, checks_, false);
+    stats_.detection_lag = 0;
+  }
   if (stats_.rematch) Rematch();
-  if (detect_new_lines || !started_) AddNewLines();
+  if (detect_here) AddNewLines();
+  // earlier <- previous <- current, the oldest buffers reused for the next pair.
+  if (!earlier_.empty()) {
+    if (started_) {
+      std::rotate(earlier_.rbegin(), earlier_.rbegin() + 1, earlier_.rend());
+      std::rotate(later_from_earlier_.rbegin(), later_from_earlier_.rbegin() + 1, later_from_earlier_.rend());
+      std::swap(earlier_[0], previous_);
+      later_from_earlier_[0].reset();
+      earlier_stored_ = std::min(earlier_stored_ + 1, static_cast<int>(earlier_.size()));
+    }
+  }
+  std::swap(previous_, current_);
   started_ = true;
-  std::swap(previous_[0], current_[0]);
-  std::swap(previous_[1], current_[1]);
 
   frame_.time = time;
   frame_.left.resize(live_.size());
@@ -168,15 +206,15 @@ bool StereoFrontEnd::DuplicatesLiveLine(const Segment2d& segment, int c) const {
   return false;
 }
 
-void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right,
-                                    const std::optional<Rigid3d>& predicted_motion) {
+void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right, const PyramidPair& pair,
+                                    const std::vector<EarlierPair>& checks, bool assign_verified) {
   stats_.detected = true;
   Clock::time_point t0 = Clock::now();
   detections_[0] = DetectLines(*detector_, options_.detection, left);
   detections_[1] = DetectLines(*detector_, options_.detection, right);
   if (options_.detection.snap_detections) {
     for (int c = 0; c < 2; ++c) {
-      SnapDetections(options_.tracking, options_.detection.min_length_px, current_[c][1], &detections_[c], &snap_);
+      SnapDetections(options_.tracking, options_.detection.min_length_px, pair[c][1], &detections_[c], &snap_);
     }
   }
   for (int c = 0; c < 2; ++c) {
@@ -206,16 +244,22 @@ void StereoFrontEnd::DetectAndMatch(const cv::Mat& left, const cv::Mat& right,
   stats_.times.describe += Since(t0);
 
   t0 = Clock::now();
-  matcher_.Match(left, right, detections_[0], descriptors_[0], detections_[1], descriptors_[1], &matches_);
-  if (options_.matching.max_previous_px > 0.0 && started_ && predicted_motion.has_value()) {
-    const Rigid3d previous_from_current = predicted_motion->Inverse();
-    const cv::Mat previous_derivatives[2] = {previous_[0][1], previous_[1][1]};
+  const bool verify = options_.matching.max_previous_px > 0.0 && !checks.empty();
+  const auto seen_before = [&](int l, int r) {
+    for (const EarlierPair& earlier : checks) {
+      if (!SeenInPreviousPair(rig_, earlier.from_matched, detections_[0][l].segment, detections_[1][r].segment,
+                              earlier.derivatives, options_.tracking, options_.matching.max_previous_px, &snap_)) {
+        return false;
+      }
+    }
+    return true;
+  };
+  const StereoMatcher::PairCheck check = seen_before;
+  matcher_.Match(left, right, detections_[0], descriptors_[0], detections_[1], descriptors_[1], &matches_,
+                 verify && assign_verified ? &check : nullptr);
+  if (verify && !assign_verified) {
     matches_.erase(std::remove_if(matches_.begin(), matches_.end(),
-                                  [&](const StereoMatch& m) {
-                                    return !SeenInPreviousPair(rig_, previous_from_current, detections_[0][m.left].segment,
-                                                               detections_[1][m.right].segment, previous_derivatives,
-                                                               options_.tracking, options_.matching.max_previous_px, &snap_);
-                                  }),
+                                  [&](const StereoMatch& m) { return !seen_before(m.left, m.right); }),
                    matches_.end());
   }
   stats_.matched = static_cast<int>(matches_.size());

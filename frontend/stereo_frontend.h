@@ -20,11 +20,23 @@
 //   describe MSLD descriptors (msld.h),
 //   match    one-to-one stereo matches (stereo_matching.h); matched pairs that do not duplicate
 //            a live line get new ids and join the live lines.
+// With the temporal check on (matching.max_previous_px) and the tracker's measured motion of
+// the last frames (image_tracking.h), the new lines are detected and matched in the *previous*
+// pair, each candidate pair checked against the matching.previous_pairs pairs before it
+// (its 3-D line moved there by the measured motions must lie on their edges: SeenInPreviousPair)
+// before the uniqueness tests choose among those that pass, and the chosen ones are tracked
+// into this pair with the live lines. The measured motion is an estimate after the tracker's
+// update, several times closer to the truth than its prediction (docs/frontend.md), and a
+// check over several pairs sees more parallax than one. Without a measured motion (the first
+// pairs, after a lost frame) the matches of this pair are checked against the previous pair
+// by the predicted motion.
 // The output frame holds every live line under its id in both images (a stereo match), so the
 // same id over frames is one tracked line. Memory does not grow with the sequence: only the
-// live lines and the previous pyramids are kept.
+// live lines and the pyramids of the last pairs (two, and previous_pairs more with the check
+// on) are kept.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -57,7 +69,8 @@ struct FrontEndStageTimes {
 };
 
 struct FrontEndFrameStats {
-  bool detected = false;   // detection ran on this pair
+  bool detected = false;   // detection and matching ran (last_detections, last_matches) ...
+  int detection_lag = 0;   // ... on the pair this many frames before this one (0 or 1)
   int tracked = 0;         // live lines carried over from the previous pair
   int lost = 0;            // live lines of the previous pair dropped here
   int detected_left = 0;   // segments after merge, length and contrast filters
@@ -78,10 +91,13 @@ class StereoFrontEnd {
   // Processes the next stereo pair (8-bit grey, the rig's size). Detection runs when
   // `detect_new_lines` or on the first pair (and when re-matching). `predicted_motion`: the
   // left camera's motion from the previous pair to this one, next_from_previous, as the
-  // tracker predicts it (none: no prediction). Throws std::invalid_argument on a wrong image
-  // size or type.
+  // tracker predicts it (none: no prediction). `measured_motion`: the left camera's motion
+  // between the two pairs before this one, next_from_previous, as the tracker measured it
+  // (none: not measured), for the temporal check of new lines (above). Throws
+  // std::invalid_argument on a wrong image size or type.
   const StereoFrame& Process(const cv::Mat& left, const cv::Mat& right, double time, bool detect_new_lines,
-                             const std::optional<Rigid3d>& predicted_motion = std::nullopt);
+                             const std::optional<Rigid3d>& predicted_motion = std::nullopt,
+                             const std::optional<Rigid3d>& measured_motion = std::nullopt);
 
   const FrontEndFrameStats& last_stats() const { return stats_; }
   // The detections of the last pair where detection ran (for pictures and measurements).
@@ -105,9 +121,19 @@ class StereoFrontEnd {
     bool from_prediction;  // predicted from the camera motion (else from the image motion)
   };
   void Track(const std::optional<Rigid3d>& predicted_motion);
-  // Detection, description and stereo matching of the pair (detections_, descriptors_, matches_),
-  // matches verified against the previous pair with the predicted motion (matching.max_previous_px).
-  void DetectAndMatch(const cv::Mat& left, const cv::Mat& right, const std::optional<Rigid3d>& predicted_motion);
+  using PyramidPair = std::array<ImagePyramid, 2>;
+  // An earlier pair to check new matches against: its level-0 derivatives (left, right) and
+  // the left camera's motion from the matched pair to it.
+  struct EarlierPair {
+    cv::Mat derivatives[2];
+    Rigid3d from_matched;
+  };
+  // Detection, description and stereo matching of the images `left`, `right` (whose pyramids
+  // are `pair`) into detections_, descriptors_, matches_; with matching.max_previous_px, the
+  // pairs checked against the earlier pairs `checks`, before the uniqueness tests
+  // (`assign_verified`) or after them.
+  void DetectAndMatch(const cv::Mat& left, const cv::Mat& right, const PyramidPair& pair,
+                      const std::vector<EarlierPair>& checks, bool assign_verified);
   // Looks for the lost lines among the matches.
   void Rematch();
   // New live lines from the matches that duplicate none.
@@ -121,8 +147,14 @@ class StereoFrontEnd {
   MsldExtractor msld_;
   StereoMatcher matcher_;
   LineFlowTracker flow_[2];
-  ImagePyramid previous_[2], current_[2];
+  PyramidPair previous_, current_;
   bool started_ = false;
+  // The pairs before the previous one (earlier_[0] the latest), for checking new matches, and
+  // the measured motion from each to the next later pair.
+  std::vector<PyramidPair> earlier_;
+  std::vector<std::optional<Rigid3d>> later_from_earlier_;
+  int earlier_stored_ = 0;
+  std::vector<EarlierPair> checks_;
   std::int64_t next_id_ = 0;
   std::vector<LiveLine> live_;
   StereoFrame frame_;

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 
+#include "frontend/frontend_audit.h"
 #include "frontend/line_motion.h"
 #include "frontend/rendered_pair.h"
 
@@ -118,6 +119,70 @@ TEST(StereoFrontEnd, NewMatchesAreCheckedAgainstThePreviousPairWithThePredictedM
                                    on->last_detections(1)[m.right].segment, derivatives, FrontEndOptions().tracking, 2.0,
                                    &workspace));
   }
+}
+
+TEST(StereoFrontEnd, WithAMeasuredMotionNewLinesAreMatchedInThePreviousPairAndCheckedAgainstTheTwoBefore) {
+  // Paper scene frames 16-20 with the true motions as the prediction and the measurement;
+  // detection asked on frame 20. With the check on, the matches are made in pair 19 and must
+  // lie on edges in pairs 18 and 17 when moved there; the uniqueness tests then weigh only the
+  // candidates that pass, so look-alike bars the ratio test gives up on are matched.
+  const RenderedPaper paper(21);
+  SimulatedSequence judged = paper.sequence();
+  judged.lines = WithBarSecondEdges(paper.sequence());
+  const auto run = [&](double max_previous_px) {
+    FrontEndOptions options;
+    options.detection.detector = LineDetectorType::kLsd;  // the detections measured below
+    options.matching.max_previous_px = max_previous_px;
+    options.matching.previous_pairs = 2;
+    // The paper scene's range and row check (measure_frontend's PaperSceneOptions).
+    options.matching.min_disparity_px = 84.0;
+    options.matching.max_disparity_px = 425.0;
+    options.matching.min_union_overlap = 0.5;
+    auto front_end = std::make_unique<StereoFrontEnd>(options, paper.rig());
+    for (int k = 16; k <= 20; ++k) {
+      const std::optional<Rigid3d> predicted =
+          k > 16 ? std::optional<Rigid3d>(paper.Motion(k - 1, k)) : std::nullopt;
+      const std::optional<Rigid3d> measured =
+          k > 17 ? std::optional<Rigid3d>(paper.Motion(k - 2, k - 1)) : std::nullopt;
+      front_end->Process(paper.Image(k, 0), paper.Image(k, 1), k, k == 16 || k == 20, predicted, measured);
+    }
+    return front_end;
+  };
+  const auto correct_matches = [&](const StereoFrontEnd& front_end, int frame) {
+    const ProjectedGroundTruth left = ProjectedGroundTruthAt(judged, frame, 0), right = ProjectedGroundTruthAt(judged, frame, 1);
+    int correct = 0, wrong = 0;
+    std::vector<int> common;
+    for (const StereoMatch& m : front_end.last_matches()) {
+      const PairVerdict verdict = JudgeStereoPair(left, right, front_end.last_detections(0)[m.left].segment,
+                                                  front_end.last_detections(1)[m.right].segment, &common);
+      correct += verdict == PairVerdict::kCorrect;
+      wrong += verdict == PairVerdict::kWrong;
+    }
+    return std::make_pair(correct, wrong);
+  };
+  const std::unique_ptr<StereoFrontEnd> off = run(0.0), on = run(1.0);
+  EXPECT_EQ(off->last_stats().detection_lag, 0);
+  ASSERT_EQ(on->last_stats().detection_lag, 1);
+  const auto [correct_off, wrong_off] = correct_matches(*off, 20);
+  const auto [correct_on, wrong_on] = correct_matches(*on, 19);
+  EXPECT_EQ(wrong_on, 0);
+  EXPECT_GT(correct_on, correct_off);
+  // Every match passes the check against pairs 18 and 17 with the true motion.
+  const LineFlowTracker flow(FrontEndOptions().tracking);
+  SnapWorkspace workspace;
+  for (const int earlier : {18, 17}) {
+    ImagePyramid pyramids[2];
+    for (int c = 0; c < 2; ++c) flow.BuildPyramid(paper.Image(earlier, c), &pyramids[c]);
+    const cv::Mat derivatives[2] = {pyramids[0][1], pyramids[1][1]};
+    for (const StereoMatch& m : on->last_matches()) {
+      EXPECT_TRUE(SeenInPreviousPair(paper.rig(), paper.Motion(19, earlier), on->last_detections(0)[m.left].segment,
+                                     on->last_detections(1)[m.right].segment, derivatives, FrontEndOptions().tracking,
+                                     1.0, &workspace));
+    }
+  }
+  // The new lines were tracked from pair 19 into pair 20 with the live ones.
+  EXPECT_GT(on->last_stats().added, 0);
+  EXPECT_GE(on->last_stats().live, on->last_stats().added);
 }
 
 TEST(LineMotion, PlaneHomographiesMoveTheLinesPointsExactly) {

@@ -169,18 +169,11 @@ StereoMatcher::StereoMatcher(const MatchingOptions& options, const StereoRig& ri
 
 void StereoMatcher::Match(const cv::Mat& left_grey, const cv::Mat& right_grey, const std::vector<ImageLine>& left,
                           const std::vector<MsldDescriptor>& left_descriptors, const std::vector<ImageLine>& right,
-                          const std::vector<MsldDescriptor>& right_descriptors, std::vector<StereoMatch>* matches) {
+                          const std::vector<MsldDescriptor>& right_descriptors, std::vector<StereoMatch>* matches,
+                          const PairCheck* verify) {
   matches->clear();
   const int nl = static_cast<int>(left.size()), nr = static_cast<int>(right.size());
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  best_left_.assign(nl, kInf);
-  second_left_.assign(nl, kInf);
-  best_left_index_.assign(nl, -1);
-  best_right_.assign(nr, kInf);
-  second_right_.assign(nr, kInf);
-  best_right_index_.assign(nr, -1);
   candidates_.clear();
-  const float max_distance = static_cast<float>(options_.max_msld_distance);
   for (int i = 0; i < nl; ++i) {
     const Segment2d& ls = left[i].segment;
     const Eigen::Vector2d ld = ls.tail<2>() - ls.head<2>();
@@ -193,42 +186,72 @@ void StereoMatcher::Match(const cv::Mat& left_grey, const cv::Mat& right_grey, c
       if (ld.dot(rs.tail<2>() - rs.head<2>()) <= 0.0) continue;
       if (!geometry_.DisparityInRange(ls, rs, options_.min_disparity_px, options_.max_disparity_px)) continue;
       if (geometry_.BeamOverlap(ls, rs, epipolar_sine_, options_.epipolar_distance_px) < options_.min_overlap) continue;
-      const float distance = (left_descriptors[i] - right_descriptors[j]).norm();
-      if (distance < best_left_[i]) {
-        second_left_[i] = best_left_[i];
-        best_left_[i] = distance;
-        best_left_index_[i] = j;
-      } else if (distance < second_left_[i]) {
-        second_left_[i] = distance;
-      }
-      if (distance < best_right_[j]) {
-        second_right_[j] = best_right_[j];
-        best_right_[j] = distance;
-        best_right_index_[j] = i;
-      } else if (distance < second_right_[j]) {
-        second_right_[j] = distance;
-      }
+      candidates_.push_back({i, j, (left_descriptors[i] - right_descriptors[j]).norm(), 0.0f});
     }
   }
+  // The verifications of a pair: the union overlap and the cross-correlation.
+  const auto accepted = [&](int i, int j, float* ncc) {
+    if (options_.min_union_overlap > 0.0 &&
+        geometry_.BeamOverlap(left[i].segment, right[j].segment, epipolar_sine_, options_.epipolar_distance_px,
+                              StereoGeometry::OverlapOf::kUnion) < options_.min_union_overlap) {
+      return false;
+    }
+    const bool along = geometry_.EpipolarSine(left[i].segment) < epipolar_sine_;
+    *ncc = static_cast<float>(SegmentCrossCorrelation(geometry_, left_grey, right_grey, left[i].segment,
+                                                      right[j].segment, along, options_.ncc_half_width_px));
+    return *ncc > options_.min_ncc;
+  };
+  const float max_distance = static_cast<float>(options_.max_msld_distance);
   const float ratio = static_cast<float>(options_.msld_ratio);
+  if (verify != nullptr) {
+    // Every candidate that could be a best or a second best is verified first, so that the
+    // uniqueness tests below weigh only the candidates that pass.
+    const float reach = ratio < 1.0f ? max_distance / ratio : max_distance;
+    size_t kept = 0;
+    for (Candidate& c : candidates_) {
+      if (c.distance > reach || !accepted(c.left, c.right, &c.ncc) || !(*verify)(c.left, c.right)) continue;
+      candidates_[kept++] = c;
+    }
+    candidates_.resize(kept);
+  }
+  // Mutual nearest neighbours with the ratio test, both ways.
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  best_left_.assign(nl, kInf);
+  second_left_.assign(nl, kInf);
+  best_left_index_.assign(nl, -1);
+  best_right_.assign(nr, kInf);
+  second_right_.assign(nr, kInf);
+  best_right_index_.assign(nr, -1);
+  best_left_candidate_.assign(nl, -1);
+  for (int k = 0; k < static_cast<int>(candidates_.size()); ++k) {
+    const Candidate& c = candidates_[k];
+    if (c.distance < best_left_[c.left]) {
+      second_left_[c.left] = best_left_[c.left];
+      best_left_[c.left] = c.distance;
+      best_left_index_[c.left] = c.right;
+      best_left_candidate_[c.left] = k;
+    } else if (c.distance < second_left_[c.left]) {
+      second_left_[c.left] = c.distance;
+    }
+    if (c.distance < best_right_[c.right]) {
+      second_right_[c.right] = best_right_[c.right];
+      best_right_[c.right] = c.distance;
+      best_right_index_[c.right] = c.left;
+    } else if (c.distance < second_right_[c.right]) {
+      second_right_[c.right] = c.distance;
+    }
+  }
   for (int i = 0; i < nl; ++i) {
     const int j = best_left_index_[i];
     if (j < 0 || best_right_index_[j] != i || best_left_[i] > max_distance) continue;  // mutual best
     if (ratio < 1.0f && (best_left_[i] > ratio * second_left_[i] || best_right_[j] > ratio * second_right_[j])) {
       continue;
     }
-    // After the uniqueness tests, which weigh every candidate of the beam: a verification of
-    // the chosen pair, like the cross-correlation below.
-    if (options_.min_union_overlap > 0.0 &&
-        geometry_.BeamOverlap(left[i].segment, right[j].segment, epipolar_sine_, options_.epipolar_distance_px,
-                              StereoGeometry::OverlapOf::kUnion) < options_.min_union_overlap) {
-      continue;
-    }
-    const bool along = geometry_.EpipolarSine(left[i].segment) < epipolar_sine_;
-    const double ncc = SegmentCrossCorrelation(geometry_, left_grey, right_grey, left[i].segment, right[j].segment,
-                                               along, options_.ncc_half_width_px);
-    if (ncc <= options_.min_ncc) continue;
-    matches->push_back({i, j, best_left_[i], static_cast<float>(ncc)});
+    // Without a verification: the chosen pair's checks, after the uniqueness tests (which weigh
+    // every candidate of the beam).
+    float ncc = candidates_[best_left_candidate_[i]].ncc;
+    if (verify == nullptr && !accepted(i, j, &ncc)) continue;
+    matches->push_back({i, j, best_left_[i], ncc});
   }
 }
 

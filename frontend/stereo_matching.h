@@ -24,6 +24,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -96,10 +97,17 @@ class StereoMatcher {
  public:
   StereoMatcher(const MatchingOptions& options, const StereoRig& rig);
   // One-to-one matches between the oriented lines of a stereo pair, described by MSLD
-  // (descriptors[i] of lines[i]).
+  // (descriptors[i] of lines[i]):
+  // mutual nearest neighbours in MSLD distance passing the ratio test, then the union overlap
+  // and the cross-correlation. With `verify` (a check of a pair by left and right index, e.g.
+  // SeenInPreviousPair), every candidate is checked first (union overlap, cross-correlation,
+  // `verify`) and the uniqueness tests are among those that pass: look-alike lines that the
+  // descriptor cannot tell apart, the check can.
+  using PairCheck = std::function<bool(int left, int right)>;
   void Match(const cv::Mat& left_grey, const cv::Mat& right_grey, const std::vector<ImageLine>& left,
              const std::vector<MsldDescriptor>& left_descriptors, const std::vector<ImageLine>& right,
-             const std::vector<MsldDescriptor>& right_descriptors, std::vector<StereoMatch>* matches);
+             const std::vector<MsldDescriptor>& right_descriptors, std::vector<StereoMatch>* matches,
+             const PairCheck* verify = nullptr);
   const StereoGeometry& geometry() const { return geometry_; }
 
  private:
@@ -110,10 +118,11 @@ class StereoMatcher {
   struct Candidate {
     int left, right;
     float distance;
+    float ncc;
   };
   std::vector<Candidate> candidates_;
   std::vector<float> best_left_, second_left_, best_right_, second_right_;
-  std::vector<int> best_left_index_, best_right_index_;
+  std::vector<int> best_left_index_, best_right_index_, best_left_candidate_;
 };
 
 }  // namespace slt
