@@ -23,11 +23,15 @@ SegmentCamera SegmentCamera::FromRig(const StereoRig& rig, bool left) {
   return camera;
 }
 
-void TaylorSegmentCost::Set(const SegmentCamera* camera, const Segment2d& segment, double weight, double sigma_px) {
+void TaylorSegmentCost::Set(const SegmentCamera* camera, const Segment2d& segment, double weight, double sigma_px,
+                            SegmentResidual form) {
   camera_ = camera;
   x1_ = segment.head<2>();
   x2_ = segment.tail<2>();
-  scale_ = std::sqrt(weight / 3.0) / sigma_px;
+  const bool taylor = form == SegmentResidual::kTaylor;
+  scale_ = std::sqrt(taylor ? weight / 3.0 : weight) / sigma_px;
+  mix_ = taylor ? 0.5 : 0.0;
+  last_ = taylor ? kHalfSqrt3 : 1.0;
 }
 
 bool TaylorSegmentCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
@@ -48,8 +52,8 @@ bool TaylorSegmentCost::Evaluate(double const* const* parameters, double* residu
   const bool want_jacobians = jacobians != nullptr && (jacobians[0] != nullptr || jacobians[1] != nullptr);
   const double h1 = SignedDistance(pixel_line, x1_, want_jacobians ? &h1_d_line : nullptr);
   const double h2 = SignedDistance(pixel_line, x2_, want_jacobians ? &h2_d_line : nullptr);
-  residuals[0] = scale_ * (h1 + 0.5 * h2);
-  residuals[1] = scale_ * kHalfSqrt3 * h2;
+  residuals[0] = scale_ * (h1 + mix_ * h2);
+  residuals[1] = scale_ * last_ * h2;
   if (!std::isfinite(residuals[0]) || !std::isfinite(residuals[1])) return false;
   if (!want_jacobians) return true;
 
@@ -59,8 +63,8 @@ bool TaylorSegmentCost::Evaluate(double const* const* parameters, double* residu
   //   d r / d R(:, j) = GA n_j + GC d_j,   d r / d t = -GA [d_c]_x,
   //   d r / d n = GA R,   d r / d d = GC R.
   Eigen::Matrix<double, 2, 3> g;
-  g.row(0) = scale_ * (h1_d_line + 0.5 * h2_d_line);
-  g.row(1) = (scale_ * kHalfSqrt3) * h2_d_line;
+  g.row(0) = scale_ * (h1_d_line + mix_ * h2_d_line);
+  g.row(1) = (scale_ * last_) * h2_d_line;
   g = g * camera_->pixel_from_normalized;
   Eigen::Matrix<double, 2, 3> ga, gc;
   if (camera_->is_left) {

@@ -17,6 +17,13 @@
 // once), sigma the expected rms distance of a segment (px): costs are in standard deviations
 // squared, per pixel of segment length when weighted.
 //
+// The same block can instead hold the endpoints' distances themselves (SegmentResidual::kEndpoints),
+//     r = sqrt(w) / sigma * [h1; h2],   |r|^2 = w (h1^2 + h2^2) / sigma^2,
+// the likelihood's residual when the two endpoints' noise across the line is independent with
+// standard deviation sigma. Taylor's form weighs a tilt of the line about the segment's middle
+// (h1 = -h2) a third of an offset (h1 = h2) at equal distances; the endpoint form weighs both
+// as the endpoints measure them.
+//
 // Jacobians are with respect to the ambient parameters (T as [R; t], 12 numbers; L as [n; d]);
 // Ceres chains them with the manifolds' PlusJacobian. l is linear in R, t (through
 // n_c = R n + t x R d) and in L, so the ambient Jacobian is exact and costs a few 2x3 products.
@@ -46,11 +53,14 @@ struct SegmentCamera {
   static SegmentCamera FromRig(const StereoRig& rig, bool left);
 };
 
+enum class SegmentResidual { kTaylor, kEndpoints };
+
 class TaylorSegmentCost final : public ceres::SizedCostFunction<2, kPoseAmbientSize, kLineAmbientSize> {
  public:
   TaylorSegmentCost() = default;
   // `camera` must outlive the cost's use. `weight` is w above (ell or 1).
-  void Set(const SegmentCamera* camera, const Segment2d& segment, double weight, double sigma_px);
+  void Set(const SegmentCamera* camera, const Segment2d& segment, double weight, double sigma_px,
+           SegmentResidual form = SegmentResidual::kTaylor);
 
   // Parameters: the left camera's cam_from_world (PoseToParameters) and the line
   // (LineToParameters). Returns false where the line projects to no image line (it passes
@@ -61,7 +71,10 @@ class TaylorSegmentCost final : public ceres::SizedCostFunction<2, kPoseAmbientS
   const SegmentCamera* camera_ = nullptr;
   Eigen::Vector2d x1_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d x2_ = Eigen::Vector2d::Zero();
-  double scale_ = 1.0;  // sqrt(w / 3) / sigma
+  double scale_ = 1.0;  // sqrt(w / 3) / sigma (Taylor), sqrt(w) / sigma (endpoints)
+  // r = scale [h1 + mix h2; last h2]: (1/2, sqrt(3)/2) for Taylor's form, (0, 1) for the endpoints'.
+  double mix_ = 0.5;
+  double last_ = 0.8660254037844386;
 };
 
 // The robust loss of a segment whose residual carries the weight w: rho(s) = w rho_k(s / w),

@@ -101,7 +101,8 @@ TEST_P(TaylorSegmentCostTest, ZeroForASegmentOnTheProjectedLine) {
 
 TEST_P(TaylorSegmentCostTest, AnalyticJacobiansMatchCeresNumericDifferentiation) {
   // Ceres's GradientChecker differentiates the residual numerically in the ambient parameters
-  // and compares both the ambient Jacobians and their products with the manifolds' PlusJacobian.
+  // and compares both the ambient Jacobians and their products with the manifolds' PlusJacobian
+  // (Taylor's form in even trials, the endpoints' in odd ones).
   std::mt19937_64 rng(13);
   const PoseManifold pose_manifold;
   const LineManifold line_manifold;
@@ -112,7 +113,7 @@ TEST_P(TaylorSegmentCostTest, AnalyticJacobiansMatchCeresNumericDifferentiation)
     const Scene s = RandomScene(rng, GetParam());
     const SegmentCamera camera = SegmentCamera::FromRig(s.rig, GetParam());
     TaylorSegmentCost cost;
-    cost.Set(&camera, s.segment, 150.0, 1.3);
+    cost.Set(&camera, s.segment, 150.0, 1.3, trial % 2 == 0 ? SegmentResidual::kTaylor : SegmentResidual::kEndpoints);
     ceres::GradientChecker checker(&cost, &manifolds, numeric);
     ceres::GradientChecker::ProbeResults results;
     const double* parameters[] = {s.pose, s.line};
@@ -162,6 +163,23 @@ TEST_P(TaylorSegmentCostTest, PoseTangentJacobianAgreesWithTheGeometryCode) {
     const Eigen::Matrix<double, 2, 6> expected = r_d_image * image_d_pose;
     const Eigen::Matrix<double, 2, 6> actual = ambient * plus;
     EXPECT_LT((actual - expected).norm(), 1e-5 * expected.norm()) << "actual\n" << actual << "\nexpected\n" << expected;
+  }
+}
+
+TEST_P(TaylorSegmentCostTest, EndpointResidualIsTheEndpointsDistancesOverSigma) {
+  std::mt19937_64 rng(15);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Scene s = RandomScene(rng, GetParam());
+    const SegmentCamera camera = SegmentCamera::FromRig(s.rig, GetParam());
+    const Rigid3d camera_from_world = GetParam() ? s.cam_from_world : s.rig.right_from_left * s.cam_from_world;
+    const Eigen::Vector3d pixel_line = PixelLineFromNormalizedLine(
+        GetParam() ? s.rig.left : s.rig.right, TransformPluecker(camera_from_world, LineFromParameters(s.line)).moment);
+    const double sigma = 0.7, weight = 2.0;
+    TaylorSegmentCost cost;
+    cost.Set(&camera, s.segment, weight, sigma, SegmentResidual::kEndpoints);
+    const Eigen::Vector2d r = Residual(cost, s.pose, s.line);
+    EXPECT_NEAR(r(0), std::sqrt(weight) * SignedDistance(pixel_line, s.segment.head<2>()) / sigma, 1e-9);
+    EXPECT_NEAR(r(1), std::sqrt(weight) * SignedDistance(pixel_line, s.segment.tail<2>()) / sigma, 1e-9);
   }
 }
 

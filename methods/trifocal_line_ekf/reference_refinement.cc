@@ -42,6 +42,9 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
           .Field("max_keyframes", &O::max_keyframes, AtLeast(1), "keyframes kept in the refinement window")
           .Field("max_iterations", &O::max_iterations, AtLeast(1), "Levenberg-Marquardt steps per refinement")
           .Field("huber_sigma", &O::huber_sigma, Positive(), "Huber threshold of the segment residual (sigmas)")
+          .Field("segment_residual", &O::segment_residual,
+                 {{SegmentResidual::kTaylor, "taylor"}, {SegmentResidual::kEndpoints, "endpoints"}},
+                 "segment residual: Taylor's integral or the endpoints' distances")
           .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
           .Field("carry_over", &O::carry_over,
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
@@ -64,7 +67,9 @@ ReferenceRefiner::ReferenceRefiner(const ReferenceRefinementOptions& options, do
       // distances h1, h2; with sigma^2 = sigma_e^2 / 2 its information on the line's offset
       // (h1 = h2) is that of two independent endpoints, 2 / sigma_e^2, and on its tilt
       // (h1 = -h2) a third of it: a little conservative.
-      sigma_px_(endpoint_sigma_px / std::sqrt(2.0)),
+      // The endpoint form, (h1^2 + h2^2) / sigma_e^2, has the same information on the offset and
+      // three times Taylor's on the tilt.
+      sigma_px_(options.segment_residual == SegmentResidual::kTaylor ? endpoint_sigma_px / std::sqrt(2.0) : endpoint_sigma_px),
       min_triangulation_sine_(std::sin(options.min_triangulation_angle_deg * M_PI / 180.0)),
       loss_(std::make_unique<ceres::HuberLoss>(options.huber_sigma)) {
   options_.Check();
@@ -202,7 +207,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
     for (int c = 0; c < 2; ++c) {
       if (used == costs_.size()) costs_.emplace_back();
-      costs_[used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_);
+      costs_[used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_, options_.segment_residual);
       problem.AddResidualBlock(&costs_[used], loss_.get(), pose, parameters);
       residuals_.push_back({pose, line});
       ++used;
@@ -373,7 +378,7 @@ void ReferenceRefiner::RefineTriangulatedLines(const PoseOf& pose_of, const Offs
       }
       for (int c = 0; c < 2; ++c) {
         if (*used == costs_.size()) costs_.emplace_back();
-        costs_[*used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_);
+        costs_[*used].Set(&cameras_[c], c == 0 ? left : right, 1.0, sigma_px_, options_.segment_residual);
         problem.AddResidualBlock(&costs_[*used], loss_.get(), pose, l.parameters);
         residuals_.push_back({pose, i});
         ++*used;

@@ -13,7 +13,8 @@
 // small bundle adjustment
 //     min over L_i, M_k   sum_i sum_{c in {left, right}} rho(|r(C_c, L_i; s_i1c)|^2)
 //                       + sum_k sum_{i seen in K_k} sum_c rho(|r(C_c M_k, L_i; s_ikc)|^2),
-// with r Taylor & Kriegman's segment residual (optim/taylor_segment_cost.h, weight 1),
+// with r Taylor & Kriegman's segment residual (optim/taylor_segment_cost.h, weight 1) or, with
+// segment_residual "endpoints", the endpoints' distances to the projected line,
 // C_left = I, C_right = the rig's right_from_left, the reference pair's pose the identity
 // (held fixed: the gauge) and the rig fixed (the scale), rho the Huber loss. Lines on the
 // 4-dof manifold, poses on SE(3) (optim/line_sfm_manifolds.h, shared with the Taylor
@@ -68,6 +69,12 @@ struct ReferenceRefinementOptions {
   int max_keyframes = 32;      // keyframes kept (beyond: the one nearest its successor is dropped)
   int max_iterations = 10;     // Levenberg-Marquardt steps per solve
   double huber_sigma = 2.0;    // Huber threshold on the whitened segment residual
+  // The segment residual (optim/taylor_segment_cost.h): Taylor's (weight 1, sigma the endpoint
+  // sigma / sqrt(2)) or the endpoints' distances (sigma the endpoint sigma), which weighs the
+  // tilt of a line three times as much as Taylor's does. Taylor's by default: on the room loop
+  // the endpoints' alone changes the means little; with the triangulated lines
+  // (min_triangulation_angle_deg) it is the most accurate setting measured (docs/long_sequences.md).
+  SegmentResidual segment_residual = SegmentResidual::kTaylor;
   // The current pose follows the refined newest keyframe. Off: with 32 keyframes the room
   // loop's maximum error is lower without it (docs/long_sequences.md).
   bool move_pose = false;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cstring>
 #include <memory>
@@ -111,6 +113,79 @@ TEST(ReferenceRefinerTest, RecoversLinesAndPoseFromPerturbedStartAndTriangulates
   EXPECT_LT(end_error, 1e-4 * start_error);
 }
 
+// A reference pair at the identity with the true lines (the degenerate one not usable).
+void StartAtTheTrueLines(const StereoRig& rig, ReferenceRefiner* refiner) {
+  refiner->Reset(rig);
+  refiner->StartReference(static_cast<int>(kLines.size()));
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    const Seen s = Observe(rig, Rigid3d(), i);
+    refiner->SetLine(i, TrueLine(i), i != kDegenerate, s.left, s.right, s.left_line);
+  }
+}
+
+// Four keyframes (KeyframePose(1..4)) of every line, the degenerate one's segments moved up in
+// odd keyframes and down in even ones by jitter_px (no 3-D line fits them then); returns the
+// refined newest pose.
+Rigid3d AddFourKeyframes(const StereoRig& rig, double jitter_px, ReferenceRefiner* refiner) {
+  Rigid3d newest;
+  for (int k = 1; k <= 4; ++k) {
+    EXPECT_TRUE(refiner->CountFrame(KeyframePose(k)));
+    std::vector<ReferenceRefiner::Observation> observations;
+    for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+      Seen s = Observe(rig, KeyframePose(k), i);
+      if (i == kDegenerate && jitter_px != 0.0) {
+        const double shift = (k % 2 == 1 ? 1.0 : -1.0) * jitter_px;
+        for (int v : {1, 3}) {
+          s.left(v) += shift;
+          s.right(v) += shift;
+        }
+        s.left_line = (rig.left.K().transpose() * LineFromSegment(s.left)).normalized();
+      }
+      observations.push_back({i, s.left, s.right, s.left_line});
+    }
+    EXPECT_TRUE(refiner->AddKeyframeAndSolve(KeyframePose(k), observations, &newest));
+  }
+  return newest;
+}
+
+// The refined lines' covariances after four noise-free keyframes, with the given residual, in
+// the ambient [n; d] (the tangent's basis depends on the solve's path).
+std::vector<Matrix6d> RefinedCovariances(SegmentResidual residual) {
+  StereoRig rig;
+  ReferenceRefinementOptions options;
+  options.enabled = true;
+  options.keyframe_interval = 1;
+  options.segment_residual = residual;
+  ReferenceRefiner refiner(options, 1.0);
+  StartAtTheTrueLines(rig, &refiner);
+  const Rigid3d newest = AddFourKeyframes(rig, 0.0, &refiner);
+  EXPECT_LT(LogSE3(newest * KeyframePose(4).Inverse()).norm(), 1e-9);
+  std::vector<Matrix6d> covariances;
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    if (i == kDegenerate) continue;
+    EXPECT_TRUE(refiner.Refined(i)) << "line " << i;
+    EXPECT_LT(LineError(refiner.Line(i), TrueLine(i)), 1e-9) << "line " << i;
+    const Eigen::Matrix<double, 6, 4> basis = refiner.TangentBasis(i);
+    covariances.push_back(basis * refiner.Covariance(i) * basis.transpose());
+  }
+  return covariances;
+}
+
+TEST(ReferenceRefinerTest, EndpointResidualWeighsTheLinesTiltAsTheEndpointsMeasureIt) {
+  // Taylor's residual (sigma / sqrt(2)) and the endpoints' (sigma) carry the same information on
+  // a line's offset across its segments, and the endpoints' three times Taylor's on its tilt
+  // about their middles: every refined line's covariance is smaller, never larger.
+  const std::vector<Matrix6d> taylor = RefinedCovariances(SegmentResidual::kTaylor);
+  const std::vector<Matrix6d> endpoints = RefinedCovariances(SegmentResidual::kEndpoints);
+  ASSERT_EQ(taylor.size(), endpoints.size());
+  for (size_t i = 0; i < taylor.size(); ++i) {
+    const Matrix6d difference = taylor[i] - endpoints[i];
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix6d>(difference).eigenvalues().minCoeff(), -1e-9 * taylor[i].norm())
+        << "line " << i;
+    EXPECT_LT(endpoints[i].trace(), 0.9 * taylor[i].trace()) << "line " << i;
+  }
+}
+
 // The consistency gate of the lines triangulated from keyframes: the degenerate line reaches
 // the filter (Refined) only when its segments fit and its position is determined.
 bool DegenerateLinePassesGate(double max_sigma_m, double jitter_px) {
@@ -122,31 +197,8 @@ bool DegenerateLinePassesGate(double max_sigma_m, double jitter_px) {
   options.triangulated_max_sigma_m = max_sigma_m;
   options.triangulated_gate_probability = 0.99;
   ReferenceRefiner refiner(options, 1.0);
-  refiner.Reset(rig);
-  refiner.StartReference(static_cast<int>(kLines.size()));
-  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
-    const Seen s = Observe(rig, Rigid3d(), i);
-    refiner.SetLine(i, TrueLine(i), i != kDegenerate, s.left, s.right, s.left_line);
-  }
-  Rigid3d newest;
-  for (int k = 1; k <= 4; ++k) {
-    EXPECT_TRUE(refiner.CountFrame(KeyframePose(k)));
-    std::vector<ReferenceRefiner::Observation> observations;
-    for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
-      Seen s = Observe(rig, KeyframePose(k), i);
-      if (i == kDegenerate) {
-        // Up in odd keyframes, down in even ones: no 3-D line fits them.
-        const double shift = (k % 2 == 1 ? 1.0 : -1.0) * jitter_px;
-        for (int v : {1, 3}) {
-          s.left(v) += shift;
-          s.right(v) += shift;
-        }
-        s.left_line = (rig.left.K().transpose() * LineFromSegment(s.left)).normalized();
-      }
-      observations.push_back({i, s.left, s.right, s.left_line});
-    }
-    EXPECT_TRUE(refiner.AddKeyframeAndSolve(KeyframePose(k), observations, &newest));
-  }
+  StartAtTheTrueLines(rig, &refiner);
+  AddFourKeyframes(rig, jitter_px, &refiner);
   for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
     if (i != kDegenerate) {
       EXPECT_TRUE(refiner.Refined(i)) << "line " << i;
