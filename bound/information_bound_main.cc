@@ -1,5 +1,5 @@
 // information_bound: the accuracy a causal tracker could reach at all on an experiment
-// config's simulated trials (experiments/information_bound.h; docs/long_sequences.md). For every
+// config's simulated trials (bound/information_bound.h; docs/long_sequences.md). For every
 // sweep point and trial (the sequences run_experiment simulates: seed TrialSeed(seed, k)) it
 // computes the full-history bundle adjustment's pose at every keyframe, causally and as a
 // smoother, and optionally a method of the config at the same keyframes, and writes
@@ -23,7 +23,7 @@
 #include "common/parallel.h"
 #include "experiments/experiment_config.h"
 #include "experiments/experiment_driver.h"
-#include "experiments/information_bound.h"
+#include "bound/information_bound.h"
 #include "methods/pose_tracker.h"
 
 namespace slt {

@@ -1,4 +1,4 @@
-#include "experiments/information_bound.h"
+#include "bound/information_bound.h"
 
 #include <gtest/gtest.h>
 
