@@ -64,7 +64,7 @@ void WriteEurocGroundTruth(const std::string& path, const Trajectory& world_from
   const std::size_t n = world_from_body.size();
   for (std::size_t k = 0; k < n; ++k) {
     const Rigid3d& pose = world_from_body[k].world_from_cam;
-    if (!pose.rotation.allFinite() || !pose.translation.allFinite() || !std::isfinite(world_from_body[k].time)) {
+    if (!pose.AllFinite() || !std::isfinite(world_from_body[k].time)) {
       throw std::invalid_argument(path + ": pose " + std::to_string(k) + ": not finite");
     }
     Eigen::Quaterniond q = pose.Quaternion();

@@ -95,8 +95,7 @@ std::string Describe(double value) {
 }
 
 void CheckFinite(const std::string& path, size_t index, const TimedPose& pose) {
-  if (!std::isfinite(pose.time) || !pose.world_from_cam.rotation.allFinite() ||
-      !pose.world_from_cam.translation.allFinite()) {
+  if (!std::isfinite(pose.time) || !pose.world_from_cam.AllFinite()) {
     FailPose(path, index, pose, "not finite");
   }
   if (pose.world_from_cam.translation.cwiseAbs().maxCoeff() > kMaxTrajectoryCoordinate) {

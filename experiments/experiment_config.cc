@@ -170,7 +170,7 @@ const OptionSchema<DatasetSpec>& DatasetSchema() {
       OptionSchema<D>()
           .Field("path", &D::path, {}, "the sequence folder, relative to the working directory")
           .Field("label", &D::label, {}, "its id in every output (default: the folder's name)")
-          .Field("layout", &D::layout, {}, "auto, asl (= euroc) or kitti")
+          .Field("layout", &D::layout, DatasetLayoutNames(), "the folder's layout (euroc = asl)")
           .Field("first_frame", &D::first_frame, AtLeast(0), "first stereo pair run")
           .Field("end_frame", &D::end_frame, AnyNumber(), "stereo pairs [first_frame, end_frame); -1 = to the end")
           .Field("ground_truth", &D::ground_truth, {}, "overrides the dataset's own ground truth file (\"\" = its own)")
@@ -182,15 +182,6 @@ const OptionSchema<DatasetSpec>& DatasetSchema() {
             if (d->label.empty()) d->label = path.parent_path().filename().string();
           })
           .Check("path", [](const D& d) { return d.path.empty() ? "missing: the sequence folder" : ""; })
-          .Check("layout",
-                 [](const D& d) {
-                   try {
-                     DatasetLayoutFromName(d.layout);
-                     return std::string();
-                   } catch (const std::invalid_argument& e) {
-                     return std::string(e.what());
-                   }
-                 })
           .Check("end_frame", [](const D& d) {
             return d.end_frame != -1 && d.end_frame <= d.first_frame ? "must be > first_frame, or -1 (to the end)" : "";
           })
@@ -326,15 +317,23 @@ void CheckOrdering(const ExperimentConfig& c, const OrderingCheck& o, const std:
   }
 }
 
-// Reads a simulation JSON; errors read "<where>: key 'simulation.<key>': <reason>" (with
-// " (at sweep point <at>)" appended when `at` is not empty).
-SimulationConfig ParseSimulation(const nlohmann::json& sim, const std::string& where, const std::string& at) {
+// The simulation of a sweep point: the base JSON with the point's values set, read and checked. Errors read "<where>: key 'simulation.<key>': <reason>", with
+// " (at sweep point <point>)" appended for a point with values.
+SimulationConfig PointSimulation(const ExperimentConfig& c, const SweepPoint& point, const std::string& where) {
+  nlohmann::json sim = c.simulation;
+  for (size_t a = 0; a < point.values.size(); ++a) {
+    try {
+      SetDottedKey(&sim, c.sweep[a].parameter, point.values[a]);
+    } catch (const std::invalid_argument& e) {
+      ThrowOptionError(where, IndexedKey("sweep", a), "parameter", e.what());
+    }
+  }
   try {
     SimulationConfig config = SimulationConfigFromJson(sim, where);
     config.Check(where);
     return config;
   } catch (const ConfigError& e) {
-    RethrowUnder(e, where, "simulation", at.empty() ? "" : " (at sweep point " + at + ")");
+    RethrowUnder(e, where, "simulation", point.values.empty() ? "" : " (at sweep point " + PointText(c, point) + ")");
   }
 }
 
@@ -378,7 +377,6 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
   if (c.simulation.contains("seed")) {
     ThrowOptionError(where, "simulation", "seed", "set by the experiment (trial k uses TrialSeed(seed, k)); use the top-level 'seed'");
   }
-  ParseSimulation(c.simulation, where, "");
 
   if (!reader.Has("plots")) c.plots = DefaultPlots(c);
   for (size_t i = 0; i < c.plots.size(); ++i) {
@@ -405,17 +403,10 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
     }
     return c;
   }
-  // Every sweep point must give a valid simulation, and the metrics frame must exist in it.
+  // Every sweep point must give a valid simulation (the base alone is never run), and the metrics
+  // frame must exist in it.
   for (const SweepPoint& point : ExpandSweep(c.sweep)) {
-    nlohmann::json sim = c.simulation;
-    for (size_t a = 0; a < c.sweep.size(); ++a) {
-      try {
-        SetDottedKey(&sim, c.sweep[a].parameter, point.values[a]);
-      } catch (const std::invalid_argument& e) {
-        ThrowOptionError(where, IndexedKey("sweep", a), "parameter", e.what());
-      }
-    }
-    const SimulationConfig config = ParseSimulation(sim, where, c.sweep.empty() ? "" : PointText(c, point));
+    const SimulationConfig config = PointSimulation(c, point, where);
     if (c.metrics_frame >= config.frames) {
       reader.Fail("metrics_frame", "frame " + std::to_string(c.metrics_frame) + " does not exist in a sequence of " +
                                        std::to_string(config.frames) + " frames (frames count from 0)");
@@ -492,9 +483,7 @@ std::vector<SweepPoint> ExpandSweep(const std::vector<SweepAxis>& axes) {
 }
 
 SimulationConfig TrialSimulation(const ExperimentConfig& config, const SweepPoint& point, int trial) {
-  nlohmann::json sim = config.simulation;
-  for (size_t a = 0; a < config.sweep.size(); ++a) SetDottedKey(&sim, config.sweep[a].parameter, point.values[a]);
-  SimulationConfig s = SimulationConfigFromJson(sim, config.name + ": simulation");
+  SimulationConfig s = PointSimulation(config, point, config.name);
   s.seed = TrialSeed(config.seed, static_cast<std::uint64_t>(trial));
   return s;
 }

@@ -4,9 +4,7 @@
 // Every field has a default and is declared once, with its range and one-line doc, in the
 // config's option schemas (experiment_config.cc, common/options.h): reading, checking and
 // writing derive from them; the comments here say only what the schemas' docs do not.
-// Errors are ConfigError "<file>: key '<dotted.key>': <reason>". ExperimentConfigToJson writes
-// every field with its default filled in, in a form that ExperimentConfigFromJson reads back to
-// the same config (config.resolved.json).
+// Errors are ConfigError "<file>: key '<dotted.key>': <reason>".
 #pragma once
 
 #include <cmath>
@@ -15,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/image_sequence.h"
 #include "simulator/simulation_config.h"
 
 namespace slt {
@@ -76,7 +75,7 @@ struct OrderingCheck {
 struct DatasetSpec {
   std::string path;
   std::string label;
-  std::string layout = "auto";
+  DatasetLayout layout = DatasetLayout::kAuto;
   int first_frame = 0;
   int end_frame = -1;
   std::string ground_truth;
@@ -116,8 +115,8 @@ struct ExperimentConfig {
 // order; "extra_methods" are appended.
 ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::string& where);
 ExperimentConfig ReadExperimentConfig(const std::string& path);
-// Every field, defaults filled in, methods expanded. Round-trips through
-// ExperimentConfigFromJson.
+// Every field, defaults filled in, methods expanded (config.resolved.json): what
+// ExperimentConfigFromJson reads back to the same config.
 nlohmann::json ExperimentConfigToJson(const ExperimentConfig& config);
 // ExperimentConfigToJson plus an output-only "resolved" section (ignored when read back):
 // each method's description and resolved Options(), and the full simulation config of every

@@ -139,7 +139,6 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
   for (const std::string& dir : shard_dirs) {
     // The swap replaces out_dir and keeps only its raw/shards/: a shard anywhere else in it
     // (or out_dir itself) would be lost.
-    RefuseOutputThatIsInput("--out", options.out_dir, {dir});
     const fs::path shard = fs::weakly_canonical(fs::absolute(dir));
     const auto inside = [](const fs::path& path, const fs::path& root) {
       const fs::path relative = path.lexically_relative(root);

@@ -21,14 +21,12 @@ struct DriverOptions {
   std::vector<std::string> command_line;  // recorded in run.json
 };
 
-// A run is written into StagingDir(out_dir) (common/file_io.h) before it replaces out_dir. While
-// the jobs run it holds config.resolved.json and a journal of the finished jobs (raw/,
-// rewritten every few seconds), which an interrupted run leaves behind for --resume.
-
 // Runs the experiment (or the shard), then writes raw/, config.resolved.json, and, for a whole
-// run, the summaries; run.json last. Everything is written into StagingDir(out_dir), which then
-// replaces out_dir whole (its raw/shards/, other runs' shard outputs, is kept): an interrupted
-// run never leaves new rows beside old summaries. Does not plot.
+// run, the summaries; run.json last. Everything is written into StagingDir(out_dir)
+// (common/file_io.h), which then replaces out_dir whole (its raw/shards/, other runs' shard
+// outputs, is kept): an interrupted run never leaves new rows beside old summaries. While the
+// jobs run the staging directory holds config.resolved.json and a journal of the finished jobs
+// (raw/, rewritten every few seconds), which an interrupted run leaves for --resume. Does not plot.
 ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& options);
 
 // Combines shard directories (MergeShardOutputs) into options.out_dir: raw/, summaries,

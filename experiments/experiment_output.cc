@@ -97,12 +97,6 @@ std::string Sig(double v) {
   return std::fabs(v) >= 1000.0 ? StringPrintf("%.0f", v) : StringPrintf("%.3g", v);
 }
 
-std::vector<int> TableMetrics(const ExperimentConfig& config) {
-  std::vector<int> metrics;
-  for (const std::string& name : config.table_metrics) metrics.push_back(TrialMetricFromName(name));
-  return metrics;
-}
-
 std::string MetricsFrameText(const ExperimentConfig& config) {
   return config.metrics_frame < 0 ? std::string("the last frame")
                                   : "frame " + std::to_string(config.metrics_frame);
@@ -111,11 +105,13 @@ std::string MetricsFrameText(const ExperimentConfig& config) {
 // The table of summary.md and summary.tex: method, sweep values, trials (f/n when only f were
 // finite), then mean, median and 95 % interval under each table metric; a rule between methods.
 Table SummaryTable(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
+  std::vector<int> metrics;
+  for (const std::string& name : config.table_metrics) metrics.push_back(TrialMetricFromName(name));
   Table table;
   table.columns.emplace_back("Method", Table::Align::kLeft);
   for (const SweepAxis& a : config.sweep) table.columns.emplace_back(a.label);
   table.columns.emplace_back("Trials");
-  for (int m : TableMetrics(config)) {
+  for (int m : metrics) {
     table.groups.push_back({kMetrics[m].title, table.columns.size(), 3});
     table.columns.emplace_back("mean");
     table.columns.emplace_back("median");
@@ -127,7 +123,7 @@ Table SummaryTable(const ExperimentConfig& config, const std::vector<SummaryRow>
     for (const nlohmann::json& v : points[r.point].values) cells.push_back(FormatValue(v));
     cells.push_back(r.finite_trials == r.trials ? std::to_string(r.trials)
                                                 : std::to_string(r.finite_trials) + "/" + std::to_string(r.trials));
-    for (int m : TableMetrics(config)) {
+    for (int m : metrics) {
       const Summary& s = r.metrics[m];
       cells.insert(cells.end(), {Sig(s.mean), Sig(s.median), "[" + Sig(s.p2_5) + ", " + Sig(s.p97_5) + "]"});
     }
@@ -369,16 +365,11 @@ void WriteSummaries(const std::string& dir, const ExperimentConfig& config, cons
 MergedRun MergeShardOutputs(const std::vector<std::string>& dirs) {
   if (dirs.empty()) throw std::runtime_error("--merge: no directory given");
   MergedRun merged;
-  nlohmann::json first_config;
   for (size_t d = 0; d < dirs.size(); ++d) {
     const std::string config_path = JoinPath(dirs[d], "config.resolved.json");
-    const nlohmann::json j = ReadJsonFile(config_path);
-    ExperimentConfig config = ExperimentConfigFromJson(j, config_path);
-    const nlohmann::json canonical = ExperimentConfigToJson(config);
-    if (d == 0) {
-      merged.config = config;
-      first_config = canonical;
-    } else if (canonical != first_config) {
+    const ExperimentConfig config = ReadExperimentConfig(config_path);
+    if (d == 0) merged.config = config;
+    if (ExperimentConfigToJson(config) != ExperimentConfigToJson(merged.config)) {
       throw std::runtime_error(config_path + ": the config differs from " + JoinPath(dirs[0], "config.resolved.json") +
                                " (shards of different experiments?)");
     }

@@ -22,12 +22,10 @@
 namespace slt {
 namespace {
 
-bool Finite(const Rigid3d& pose) { return pose.rotation.allFinite() && pose.translation.allFinite(); }
-
-// The metrics of one run from its per-frame tracker outputs (with the frame times and the wall
-// time of each Track() call) against the ground truth (empty: only the run's own metrics).
-void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth, const std::vector<double>& frame_times,
-                 const std::vector<TrackedFrame>& run, TrialResult* r) {
+// The metrics of one run from its per-frame tracker outputs (with each frame's time and the wall
+// time of its Track() call) against the ground truth (empty: only the run's own metrics).
+void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth, const std::vector<TrackedFrame>& run,
+                 TrialResult* r) {
   r->frames = static_cast<int>(run.size());
   r->metrics_frame = MetricsFrameFor(config, r->frames);
   Trajectory estimate;
@@ -43,8 +41,8 @@ void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth,
     counts.Add(out);
     has_covariance = has_covariance && out.has_covariance;
     covariances.push_back(out.covariance);
-    r->finite = r->finite && Finite(out.cam_from_world);
-    estimate.push_back({frame_times[k], out.cam_from_world.Inverse()});
+    r->finite = r->finite && out.cam_from_world.AllFinite();
+    estimate.push_back({run[k].frame_time, out.cam_from_world.Inverse()});
   }
 
   auto& m = r->metrics;
@@ -114,26 +112,24 @@ void FillMetrics(const ExperimentConfig& config, const Trajectory& ground_truth,
 // ground truth of the frames run, re-expressed from the first of them.
 void RunDatasetTrial(const ExperimentConfig& config, PoseTracker& tracker, const DatasetSpec& dataset, TrialResult* r) {
   const std::unique_ptr<StereoImageSource> source =
-      OpenStereoImages(dataset.path, DatasetLayoutFromName(dataset.layout), dataset.ground_truth);
+      OpenStereoImages(dataset.path, dataset.layout, dataset.ground_truth);
   const int first = std::min(dataset.first_frame, source->size() - 1);
   const int end = dataset.end_frame < 0 ? source->size() : std::min(dataset.end_frame, source->size());
   StereoFrontEnd front_end(FrontEndOptionsFromJson(config.frontend, config.name + ": frontend"), source->rig());
   ImageTracker image_tracker(front_end, tracker, source->rig());
   std::vector<TrackedFrame> run;
-  std::vector<double> frame_times;
   for (int k = first; k < end; ++k) {
     const StereoImages images = source->Read(k);
     const ImageTrackingStep step = image_tracker.Step(images.left, images.right, images.time);
-    run.push_back({step.output, 1e6 * step.tracker_seconds});
-    frame_times.push_back(images.time);
+    run.push_back({step.output, 1e6 * step.tracker_seconds, images.time});
   }
   // The ground truth over the frames run (within the association window of their times).
   Trajectory ground_truth;
   const double slack = 0.01;
   for (const TimedPose& pose : GroundTruthFromStart(source->ground_truth(), source->Time(first))) {
-    if (pose.time >= frame_times.front() - slack && pose.time <= frame_times.back() + slack) ground_truth.push_back(pose);
+    if (pose.time >= run.front().frame_time - slack && pose.time <= run.back().frame_time + slack) ground_truth.push_back(pose);
   }
-  FillMetrics(config, ground_truth, frame_times, run, r);
+  FillMetrics(config, ground_truth, run, r);
 }
 
 // One job: simulate (or read the dataset), run the tracker timing each Track() call, evaluate
@@ -155,12 +151,8 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   std::unique_ptr<PoseTracker> tracker = CreateTracker(method.name, method.options, where);
   const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
   const SimulatedSequence sim = Simulate(sim_config);
-  const StereoSequence& sequence = sim.sequence;
   r.seed = sim_config.seed;
-  const std::vector<TrackedFrame> run = TrackSequence(*tracker, sequence);
-  std::vector<double> frame_times;
-  for (const StereoFrame& frame : sequence.frames) frame_times.push_back(frame.time);
-  FillMetrics(config, sim.ground_truth, frame_times, run, &r);
+  FillMetrics(config, sim.ground_truth, TrackSequence(*tracker, sim.sequence), &r);
   return r;
 }
 

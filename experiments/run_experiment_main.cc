@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -87,8 +86,7 @@ int main(int argc, char** argv) {
   return RunProgram("run_experiment", [&] {
     std::string summary;
     if (!merge_dirs.empty()) {
-      const std::string first_config = (std::filesystem::path(merge_dirs[0]) / "config.resolved.json").string();
-      const std::string name = ExperimentConfigFromJson(ReadJsonFile(first_config), first_config).name;
+      const std::string name = ReadExperimentConfig(JoinPath(merge_dirs[0], "config.resolved.json")).name;
       options.out_dir = out_dir.empty() ? DefaultOutputDir(name) : out_dir;
       const MergedRun merged = MergeAndWrite(merge_dirs, options);
       ReportExpectation(merged.config, merged.trials);

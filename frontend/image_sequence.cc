@@ -318,13 +318,13 @@ class KittiSource : public StereoImageSource {
 }  // namespace
 
 const EnumNames<DatasetLayout>& DatasetLayoutNames() {
-  static const EnumNames<DatasetLayout> names = {
-      {DatasetLayout::kAuto, "auto"}, {DatasetLayout::kAsl, "asl"}, {DatasetLayout::kKitti, "kitti"}};
+  // "euroc" after "asl": a layout is written by its first name.
+  static const EnumNames<DatasetLayout> names = {{DatasetLayout::kAuto, "auto"}, {DatasetLayout::kAsl, "asl"},
+                                                 {DatasetLayout::kAsl, "euroc"}, {DatasetLayout::kKitti, "kitti"}};
   return names;
 }
 
 DatasetLayout DatasetLayoutFromName(const std::string& name) {
-  if (name == "euroc") return DatasetLayout::kAsl;
   for (const auto& [layout, n] : DatasetLayoutNames()) {
     if (name == n) return layout;
   }

@@ -28,7 +28,7 @@
 namespace slt {
 
 enum class DatasetLayout { kAuto, kAsl, kKitti };
-const EnumNames<DatasetLayout>& DatasetLayoutNames();  // "auto", "asl" (also "euroc"), "kitti"
+const EnumNames<DatasetLayout>& DatasetLayoutNames();  // "auto", "asl", "euroc" (= asl), "kitti"
 // Throws std::invalid_argument listing the names.
 DatasetLayout DatasetLayoutFromName(const std::string& name);
 

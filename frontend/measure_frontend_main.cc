@@ -187,9 +187,8 @@ double Ate(const SimulatedSequence& sequence, const Trajectory& estimate) {
 Trajectory TrackObservations(const std::string& method, const StereoSequence& observations) {
   const std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
   Trajectory trajectory;
-  const std::vector<TrackedFrame> run = TrackSequence(*tracker, observations);
-  for (size_t k = 0; k < run.size(); ++k) {
-    trajectory.push_back({observations.frames[k].time, run[k].output.cam_from_world.Inverse()});
+  for (const TrackedFrame& frame : TrackSequence(*tracker, observations)) {
+    trajectory.push_back({frame.frame_time, frame.output.cam_from_world.Inverse()});
   }
   return trajectory;
 }

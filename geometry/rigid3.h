@@ -20,6 +20,7 @@ struct Rigid3d {
   Rigid3d(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) : rotation(r), translation(t) {}
 
   static Rigid3d Identity() { return Rigid3d(); }
+  bool AllFinite() const { return rotation.allFinite() && translation.allFinite(); }
   // From a unit quaternion (any sign) and a translation.
   static Rigid3d FromQuaternion(const Eigen::Quaterniond& q, const Eigen::Vector3d& t) {
     return Rigid3d(q.normalized().toRotationMatrix(), t);

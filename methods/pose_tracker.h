@@ -196,10 +196,12 @@ struct TrackerInfo {
   std::function<std::vector<OptionDoc>()> list_options;
 };
 
-// One frame of a run: the tracker's output and the wall time of its Track() call.
+// One frame of a run: the tracker's output, the wall time of its Track() call and the frame's
+// time stamp (StereoFrame::time), which pairs the output with the ground truth.
 struct TrackedFrame {
   TrackerOutput output;
   double time_us = 0.0;
+  double frame_time = 0.0;
 };
 // One Track() call, timed.
 TrackedFrame TrackFrame(PoseTracker& tracker, const StereoFrame& frame);

@@ -47,7 +47,7 @@ std::unique_ptr<PoseTracker> CreateTracker(const std::string& name, const nlohma
 
 TrackedFrame TrackFrame(PoseTracker& tracker, const StereoFrame& frame) {
   const auto start = std::chrono::steady_clock::now();
-  TrackedFrame tracked{tracker.Track(frame), 0.0};
+  TrackedFrame tracked{tracker.Track(frame), 0.0, frame.time};
   tracked.time_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   return tracked;
 }

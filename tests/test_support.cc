@@ -62,6 +62,6 @@ std::vector<std::int64_t> WellConditionedLines(const SimulatedSequence& sim, int
   return ids;
 }
 
-bool IsFinite(const Rigid3d& pose) { return pose.rotation.allFinite() && pose.translation.allFinite(); }
+bool IsFinite(const Rigid3d& pose) { return pose.AllFinite(); }
 
 }  // namespace slt

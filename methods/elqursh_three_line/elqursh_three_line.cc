@@ -265,8 +265,7 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
     const int needed = std::max(options_.min_inliers,
                                 static_cast<int>(std::ceil(options_.min_inlier_fraction * available)));
     const int consensus = static_cast<int>(result_.inliers.size());
-    accepted = result_.success && consensus >= needed && result_.model.rotation.allFinite() &&
-               result_.model.translation.allFinite();
+    accepted = result_.success && consensus >= needed && result_.model.AllFinite();
     if (accepted) out.features_used = consensus;
   }
   out.features_outside_gate = available - out.features_used;

@@ -425,8 +425,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
       out.status = TrackingStatus::kDegraded;
     }
   }
-  if (!filter_.cam_from_ref().rotation.allFinite() || !filter_.cam_from_ref().translation.allFinite() ||
-      !filter_.velocity().allFinite() || !filter_.covariance().allFinite()) {
+  if (!filter_.cam_from_ref().AllFinite() || !filter_.velocity().allFinite() || !filter_.covariance().allFinite()) {
     // Defensive: never hand out (or predict from) a non-finite state. Restart from the last
     // good pose, with zero velocity.
     filter_.Reseed(filter_.previous_cam_from_ref(), Matrix6d::Identity() * 1e-4, /*previous_pose_trusted=*/false);
