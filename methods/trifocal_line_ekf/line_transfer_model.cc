@@ -35,6 +35,8 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
           .Field("fixed_sigma_rad", &O::fixed_sigma_rad, Positive(), "fixed R: theta (rad)")
           .Field("min_epipolar_angle_deg", &O::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines this close to the epipolar direction are not measured")
+          .Field("min_epipolar_extent_px", &O::min_epipolar_extent_px, AtLeast(0.0),
+                 "lines spanning fewer pixels across the epipolar lines are not measured (0 = off)")
           .Field("min_plane_angle_deg", &O::min_plane_angle_deg, InRange(0.0, 90.0, "[)"),
                  "current_to_reference: transfers through planes this close are not measured (Sec. 4)")
           .Child("refinement", &O::refinement, ReferenceRefinementOptionsSchema(),
@@ -142,7 +144,9 @@ bool LineTransferModel::NearEpipolar(const ObservedSegment& left) const {
   const Eigen::Vector2d a = left.line.head<2>(), b = epipolar.head<2>();
   const double denominator = a.norm() * b.norm();
   if (!(denominator > 0.0)) return true;
-  return std::abs(a.x() * b.y() - a.y() * b.x()) / denominator < min_epipolar_sine_;
+  const double sine = std::abs(a.x() * b.y() - a.y() * b.x()) / denominator;
+  const double length_px = (left.segment.head<2>() - left.segment.tail<2>()).norm();
+  return sine < min_epipolar_sine_ || sine * length_px < options_.min_epipolar_extent_px;
 }
 
 void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector<StereoLine>* out) {

@@ -65,6 +65,11 @@ struct LineTransferOptions {
   // direction, whose transfers start from it. An image criterion, unlike the angle between the
   // back-projected planes, does not also reject distant lines.
   double min_epipolar_angle_deg = 3.0;
+  // Lines whose extent across the epipolar lines (segment length times the sine of that angle,
+  // px) is below this are not measured either: a short segment's measured angle is mostly its
+  // endpoint noise, so a line in an epipolar plane can pass the angle test and be triangulated
+  // at any depth. 0 = off.
+  double min_epipolar_extent_px = 0.0;
   // Direction kCurrentToReference only: features whose transfer intersects two planes at less
   // than this angle are not measured either (lines near the trifocal plane of the views a
   // transfer uses, Sec. 4; this also rejects distant lines). 0 = off; the paper preset uses 3.

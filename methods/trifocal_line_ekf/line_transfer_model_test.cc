@@ -206,6 +206,27 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   EXPECT_EQ(strict.SetReference(scene.Frame(Rigid3d())), 0);
 }
 
+// A short segment passes the angle gate on its noisy angle alone; the extent gate measures how
+// many pixels it spans across the epipolar lines (length x sine of the angle).
+TEST(LineTransferModel, GatesShortLinesByTheirExtentAcrossEpipolarLines) {
+  TinyScene scene;
+  const double dy = 0.01 * std::tan(10.0 * M_PI / 180.0);  // 2 cm long, 10 deg from horizontal
+  scene.lines = {{{-0.01, 0.02 - dy, 0.5}, {0.01, 0.02 + dy, 0.5}}};
+  const StereoFrame frame = scene.Frame(Rigid3d());
+  ASSERT_EQ(frame.left.size(), 1u);
+  const Segment2d& s = frame.left[0].segment;
+  const double extent_px = std::abs(s(3) - s(1));  // a horizontal rig: rows
+  ASSERT_GT(extent_px, 2.0);
+  LineTransferOptions o = Options("reference_to_current", "endpoint_distance");
+  o.min_epipolar_angle_deg = 3.0;
+  for (const double gate : {0.0, extent_px - 0.5, extent_px + 0.5}) {
+    o.min_epipolar_extent_px = gate;
+    LineTransferModel model(o);
+    model.Reset(scene.rig);
+    EXPECT_EQ(model.SetReference(frame), gate < extent_px ? 1 : 0) << "gate " << gate << " px";
+  }
+}
+
 // The paper's direction gates each transfer on its own (Sec. 4): when one degenerates the other
 // still measures the line, in two rows of the block.
 class OneTransferDegenerate : public ::testing::TestWithParam<std::string> {};
