@@ -266,6 +266,8 @@ HELD_OUT = dict(BEST_SETTING, **{"refinement + consider": "refinement + consider
 # and on the slow loop (long_slow_loop_process_noise).
 PROCESS_NOISE = {"extent 3 px, accel 5e-5, fixed R 1 px":
                  "refinement + consider + epipolar extent 3 px + process noise 5e-5, fixed R 1 px"}
+# The corridor walk sways: it keeps the default process noise, with the fixed endpoint sigma.
+FIXED_R = {"extent 3 px, fixed R 1 px": "refinement + consider + epipolar extent 3 px, fixed R 1 px"}
 FRESH = dict(PROCESS_NOISE, **{"refinement + consider, epipolar extent 3 px":
                                "refinement + consider + epipolar extent 3 px"})
 LONG_RUNS = (("long_room", "room loop, 1428 frames", None),
@@ -278,7 +280,9 @@ LONG_RUNS = (("long_room", "room loop, 1428 frames", None),
              ("long_slow_loop_endpoint_residual", "room loop, 10000 frames", BEST_SETTING),
              ("long_slow_loop_process_noise", "room loop, 10000 frames", PROCESS_NOISE),
              ("long_corridor", "corridor walk, 301 frames", None),
-             ("long_corridor_slow", "corridor walk, 1201 frames", None))
+             ("long_corridor_process_noise", "corridor walk, 301 frames", FIXED_R),
+             ("long_corridor_slow", "corridor walk, 1201 frames", None),
+             ("long_corridor_slow_process_noise", "corridor walk, 1201 frames", FIXED_R))
 
 
 def endpoint_model(r, experiment, row):
