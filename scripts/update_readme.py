@@ -268,8 +268,7 @@ PROCESS_NOISE = {"extent 3 px, accel 5e-5, fixed R 1 px":
                  "refinement + consider + epipolar extent 3 px + process noise 5e-5, fixed R 1 px"}
 # The corridor walk sways: it keeps the default process noise, with the fixed endpoint sigma.
 FIXED_R = {"extent 3 px, fixed R 1 px": "refinement + consider + epipolar extent 3 px, fixed R 1 px"}
-FRESH = dict(PROCESS_NOISE, **{"refinement + consider, epipolar extent 3 px":
-                               "refinement + consider + epipolar extent 3 px"})
+FRESH = dict(PROCESS_NOISE, **{k: BEST_SETTING[k] for k in ("refinement + consider, epipolar extent 3 px",)})
 LONG_RUNS = (("long_room", "room loop, 1428 frames", None),
              ("long_room_endpoint_residual", "room loop, 1428 frames", BEST_SETTING),
              ("long_room_process_noise", "room loop, 1428 frames", PROCESS_NOISE),
