@@ -19,6 +19,7 @@ void PoseVelocityFilter::Reset(const StereoEkfOptions& options) {
   covariance_.setZero();
   covariance_.bottomRightCorner<6, 6>() = InitialVelocityCovariance();
   transition_.setIdentity();
+  process_noise_scale_sq_ = 1.0;
 }
 
 Rigid3d PoseVelocityFilter::Step() const {
@@ -34,8 +35,8 @@ void PoseVelocityFilter::Predict() {
     covariance_.leftCols<6>().setZero();
   }
   // Velocity random walk first: the new velocity is the one integrated into the pose.
-  const double qm = options_.accel_sigma_m * options_.accel_sigma_m;
-  const double qr = options_.accel_sigma_rad * options_.accel_sigma_rad;
+  const double qm = process_noise_scale_sq_ * options_.accel_sigma_m * options_.accel_sigma_m;
+  const double qr = process_noise_scale_sq_ * options_.accel_sigma_rad * options_.accel_sigma_rad;
   for (int i = 6; i < 9; ++i) covariance_(i, i) += qm;
   for (int i = 9; i < 12; ++i) covariance_(i, i) += qr;
 

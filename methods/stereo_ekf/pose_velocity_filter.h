@@ -5,7 +5,8 @@
 // Motion model (eq. 11 and 18, body frame: docs/derivations.md):
 //   xi_t = xi_{t-1} + eta,  eta ~ N(0, Q);    M_t = Exp(xi_t) M_{t-1}
 // whose error propagation is e_t = F e_{t-1} with
-//   F = [[Ad(Exp(xi)), J_l(xi)], [0, I]],    P_t|t-1 = F (P + diag(0, Q)) F^T.
+//   F = [[Ad(Exp(xi)), J_l(xi)], [0, I]],    P_t|t-1 = F (P + diag(0, q^2 Q)) F^T,
+// q^2 = 1 unless the tracker adapts it (SetProcessNoiseScale; docs/derivations.md, "Adapted Q").
 // With state FilterState::kVelocity (the paper's filter, eq. 10), the pose block is reset to zero before
 // every prediction: M_{t-1} is taken as exact and only the velocity is estimated.
 //
@@ -56,6 +57,9 @@ class PoseVelocityFilter {
   void MovePose(const Rigid3d& cam_from_ref) { cam_from_ref_ = cam_from_ref; }
   // The current camera becomes the reference: the relative pose is exactly the identity.
   void StartNewReferencePair();
+  // Q of the next predictions is multiplied by `scale_sq` (1 after Reset).
+  void SetProcessNoiseScale(double scale_sq) { process_noise_scale_sq_ = scale_sq; }
+  double process_noise_scale_sq() const { return process_noise_scale_sq_; }
 
   const Rigid3d& cam_from_ref() const { return cam_from_ref_; }
   const Rigid3d& previous_cam_from_ref() const { return previous_cam_from_ref_; }
@@ -76,6 +80,7 @@ class PoseVelocityFilter {
   Vector6d velocity_ = Vector6d::Zero();
   Matrix12d covariance_ = Matrix12d::Zero();
   Matrix12d transition_ = Matrix12d::Identity();
+  double process_noise_scale_sq_ = 1.0;
 };
 
 }  // namespace slt

@@ -39,6 +39,22 @@ PoseVelocityFilter Moving(const StereoEkfOptions& o, const Vector6d& delta, doub
 // A per-frame motion.
 Vector6d SomeDelta() { return (Vector6d() << 0.008, -0.004, 0.01, 0.012, -0.006, 0.009).finished(); }
 
+TEST(PoseVelocityFilter, ProcessNoiseScaleMultipliesQUntilReset) {
+  // From rest (xi = 0) the velocity block after one prediction is the prior plus q^2 Q.
+  const StereoEkfOptions o = Options(FilterState::kPoseVelocity);
+  PoseVelocityFilter f;
+  f.Reset(o);
+  f.SetProcessNoiseScale(0.25);
+  f.Predict();
+  PoseVelocityFilter unscaled;
+  unscaled.Reset(o);
+  unscaled.Predict();
+  const Matrix6d added = f.covariance().bottomRightCorner<6, 6>() - unscaled.covariance().bottomRightCorner<6, 6>();
+  EXPECT_LT((added - (0.25 - 1.0) * VelocityNoise(o)).norm(), 1e-15);
+  f.Reset(o);
+  EXPECT_EQ(f.process_noise_scale_sq(), 1.0);
+}
+
 TEST(PoseVelocityFilter, FirstPredictionFromRestIsThePriorPlusQ) {
   // At rest (xi = 0) F = [[I, I], [0, I]]: the pose inherits the velocity's uncertainty.
   for (const FilterState state : {FilterState::kVelocity, FilterState::kPoseVelocity}) {

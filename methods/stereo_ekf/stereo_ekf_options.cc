@@ -19,6 +19,10 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
           .Field("initial_velocity_sigma_m", &O::initial_velocity_sigma_m, Positive(), "velocity prior at the start, m / frame")
           .Field("initial_velocity_sigma_rad", &O::initial_velocity_sigma_rad, Positive(),
                  "velocity prior at the start, rad / frame")
+          .Field("adaptive_process_noise", &O::adaptive_process_noise,
+                 "scale Q online from the pose corrections, between min_accel_sigma_m and accel_sigma_m")
+          .Field("min_accel_sigma_m", &O::min_accel_sigma_m, Positive(),
+                 "floor of the adapted process noise, m / frame^2 (rad in proportion)")
           .Field("max_iterations", &O::max_iterations, InRange(1, 50), "1 = the paper's EKF update; more = iterated EKF")
           .Field("iteration_tolerance", &O::iteration_tolerance, AtLeast(0.0),
                  "stop iterating below this step, in posterior standard deviations")
@@ -39,7 +43,12 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
                  {{FeatureCount::kMeasurable, "measurable"}, {FeatureCount::kGated, "gated"}},
                  "remaining features: measurable, or also inside the gate (the paper's)")
           .Field("report_degraded", &O::report_degraded,
-                 "status 'degraded' for a measured frame the tracker cannot vouch for");
+                 "status 'degraded' for a measured frame the tracker cannot vouch for")
+          .Check("min_accel_sigma_m", [](const O& o) {
+            return !o.adaptive_process_noise || o.min_accel_sigma_m <= o.accel_sigma_m
+                       ? std::string()
+                       : "must be at most accel_sigma_m (the ceiling) when adaptive_process_noise is true";
+          });
   return schema;
 }
 

@@ -38,6 +38,14 @@ struct StereoEkfOptions {
   // 0.010 m and 1.2 deg per frame).
   double initial_velocity_sigma_m = 0.02;
   double initial_velocity_sigma_rad = 0.035;
+  // Process noise adapted online (stereo_ekf_tracker.cc, AdaptProcessNoise): Q is multiplied by
+  // q^2 in [(min_accel_sigma_m / accel_sigma_m)^2, 1], raised when the pose corrections are
+  // larger than the predicted covariance expects and lowered when they are smaller. accel_sigma_*
+  // are then the ceiling, min_accel_sigma_m the floor (the rotation's floor in proportion): the
+  // floor also bounds how many frames the filter averages, which the reference structure's
+  // error, correlated from frame to frame, requires (docs/long_sequences.md).
+  bool adaptive_process_noise = false;
+  double min_accel_sigma_m = 5e-5;  // m / frame^2
 
   // Update: 1 = the paper's single EKF update (eq. 19); more = iterated EKF (Gauss-Newton on
   // the MAP cost), stopping early when a step is shorter than iteration_tolerance posterior

@@ -26,7 +26,7 @@ TEST(StereoEkfOptions, JsonRoundTripKeepsEveryField) {
   changed["state"] = "velocity";
   changed["integration"] = "first_order";
   changed["count_features"] = "gated";
-  ASSERT_EQ(changed.size(), 21u) << "a field was added: extend this test if it needs a special value";
+  ASSERT_EQ(changed.size(), 23u) << "a field was added: extend this test if it needs a special value";
   for (const auto& [key, value] : changed.items()) EXPECT_NE(value, defaults[key]) << key;
 
   StereoEkfOptions read;
@@ -51,6 +51,17 @@ TEST(StereoEkfOptions, CheckNamesTheBadKey) {
   StereoEkfOptions too_few;
   too_few.min_features = 1;
   EXPECT_THROW(too_few.Check(), ConfigError);
+  // The adapted process noise's floor above its ceiling: an error only when it is adapted.
+  StereoEkfOptions inverted;
+  inverted.min_accel_sigma_m = 2.0 * inverted.accel_sigma_m;
+  EXPECT_NO_THROW(inverted.Check());
+  inverted.adaptive_process_noise = true;
+  try {
+    inverted.Check("tracker.json", "filter");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'filter.min_accel_sigma_m'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(StereoEkfOptions, WrongJsonTypeOrModeIsAnError) {

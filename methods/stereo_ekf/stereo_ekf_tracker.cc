@@ -15,6 +15,18 @@ namespace {
 constexpr double kNoiseAdaptationRate = 0.3;
 constexpr double kMinNoiseScale = 0.01;
 constexpr double kMaxNoiseScale = 4.0;
+// Process-noise adaptation (options.adaptive_process_noise): m <- (1 - b) m + b min(rho,
+// kMaxCorrectionRatio), rho the frame's pose correction over its expected size (AdaptProcessNoise),
+// b = kCorrectionAveraging (about ten frames), then q^2 <- q^2 m^kProcessNoiseExponent, clamped.
+// Averaging before scaling: rho of one frame is a chi-square-like draw, whose multiplicative
+// steps would drift q down (E[log rho] < 0); a diverging filter's rho of 10-100 lifts m within a
+// few frames.
+constexpr double kCorrectionAveraging = 0.1;
+constexpr double kProcessNoiseExponent = 0.3;
+constexpr double kMaxCorrectionRatio = 100.0;
+// The expected correction's floor (6 dof: a prior far stronger than the measurements expects
+// almost no correction, and rho would then be noise over nearly zero).
+constexpr double kMinExpectedCorrection = 0.5;
 // Unhealthy filter: fewer features inside the gate than kMinInlierFraction of the previous
 // frame's, or a posterior cost per residual scalar above kMaxNormalizedCost (about 1 when the
 // noise model is right).
@@ -82,6 +94,8 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   frames_since_start_ = 0;
   previous_inliers_ = 0;
   noise_scale_sq_ = 1.0;
+  correction_ratio_ = 0.0;
+  correction_ratio_mean_ = 1.0;
   ref_from_world_ = Rigid3d();
   ref_from_world_covariance_.setZero();
   filter_.Reset(options_);
@@ -313,6 +327,13 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
   } else {
     filter_.Correct(delta, solver.Inverse(), prior_information);
   }
+  if (options_.adaptive_process_noise) {
+    // The pose correction against its expected size under the model: for a linear-Gaussian
+    // update E[d^T P^-1 d] = tr(P^-1 (P - P+)) = 6 - tr(P^-1 P+), P the predicted pose covariance.
+    const Matrix6d posterior = filter_.PoseCovariance();
+    const double expected = std::max(6.0 - (prior_information * posterior).trace(), kMinExpectedCorrection);
+    correction_ratio_ = delta.dot(prior_information * delta) / expected;
+  }
   // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
   const Vector6d step = delta - delta_k;
   posterior_costs_.clear();
@@ -357,6 +378,15 @@ void StereoEkfTracker::AdaptNoiseScale(int rows) {
   const double lo = kMinNoiseScale * kMinNoiseScale;
   const double hi = kMaxNoiseScale * kMaxNoiseScale;
   noise_scale_sq_ = std::min(hi, std::max(lo, noise_scale_sq_));
+}
+
+void StereoEkfTracker::AdaptProcessNoise() {
+  if (!options_.adaptive_process_noise) return;
+  correction_ratio_mean_ = (1.0 - kCorrectionAveraging) * correction_ratio_mean_ +
+                           kCorrectionAveraging * std::min(correction_ratio_, kMaxCorrectionRatio);
+  const double floor = options_.min_accel_sigma_m / options_.accel_sigma_m;
+  const double scale_sq = filter_.process_noise_scale_sq() * std::pow(correction_ratio_mean_, kProcessNoiseExponent);
+  filter_.SetProcessNoiseScale(std::clamp(scale_sq, floor * floor, 1.0));
 }
 
 int StereoEkfTracker::MeasuredRows() const {
@@ -404,6 +434,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
     velocity_measured_ = true;
     healthy_ = state->cost <= HealthyCost(rows);
     AdaptNoiseScale(rows);
+    AdaptProcessNoise();
     const bool constrained = ConstrainsEveryDirection(frame_information_);
     out.status = TrackingStatus::kTracking;
     if (!constrained) {

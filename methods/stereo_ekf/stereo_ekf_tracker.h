@@ -15,7 +15,8 @@
 //      each step is instead the Schmidt-Kalman update of structure_consider.h, which keeps the
 //      state's correlation with that error;
 //   4. assess: lost (no update) or tracking; health (posterior cost against its chi-square
-//      bound) and the measurement-noise scale for the next frame;
+//      bound), the measurement-noise scale for the next frame and, when adapted, the process
+//      noise (the pose correction against its expected size);
 //   5. new reference pair (Sec. 3.3, the paper's feature replacement): when too few reference
 //      features remain, the current pair becomes the reference and the world pose of the
 //      reference is chained.
@@ -116,6 +117,8 @@ class StereoEkfTracker : public PoseTracker {
   bool RemovePosteriorOutliers(const Vector6d& step);
   // `rows`: MeasuredRows() of this frame's update.
   void AdaptNoiseScale(int rows);
+  // Options.adaptive_process_noise: scales Q from this frame's correction ratio (stereo_ekf_tracker.cc).
+  void AdaptProcessNoise();
   // Residual scalars measured by the features of this frame's update (4 per feature, fewer for
   // a feature with rows left out).
   int MeasuredRows() const;
@@ -137,6 +140,9 @@ class StereoEkfTracker : public PoseTracker {
   bool wants_new_features_ = true;
   int previous_inliers_ = 0;
   double noise_scale_sq_ = 1.0;
+  // This frame's pose correction over its expected size, and its running mean (process noise).
+  double correction_ratio_ = 0.0;
+  double correction_ratio_mean_ = 1.0;
   int frames_since_start_ = 0;
   int reference_features_ = 0;
   Rigid3d ref_from_world_;
