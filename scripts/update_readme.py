@@ -266,8 +266,12 @@ HELD_OUT = dict(BEST_SETTING, **{"refinement + consider": "refinement + consider
 # and on the slow loop (long_slow_loop_process_noise).
 # The process noise adapted online between the default and a floor of 5e-5 (filter.adaptive_process_noise):
 # the same setting on every long run.
+# And with the refinement's keyframes dense over a reference pair's life (every 5th frame and
+# 5 mm, 300 kept; the solve then eliminates the poses): the same row in the six configs.
 ADAPTIVE_Q = {"extent 3 px, adaptive Q, fixed R 1 px":
-              "refinement + consider + epipolar extent 3 px + adaptive process noise, fixed R 1 px"}
+              "refinement + consider + epipolar extent 3 px + adaptive process noise, fixed R 1 px",
+              "extent 3 px, adaptive Q, fixed R 1 px, keyframes 5 frames and 5 mm apart, 300 kept":
+              "refinement + consider + epipolar extent 3 px + adaptive process noise, fixed R 1 px + dense keyframes (5 frames, 5 mm, 300 kept)"}
 PROCESS_NOISE = dict(ADAPTIVE_Q, **{"extent 3 px, accel 5e-5, fixed R 1 px":
                                     "refinement + consider + epipolar extent 3 px + process noise 5e-5, fixed R 1 px"})
 # The corridor walk sways: it keeps the default process noise, with the fixed endpoint sigma.

@@ -10,10 +10,16 @@
 #include <limits>
 
 #include "common/chi_square.h"
+#include "geometry/se3.h"
 #include "optim/ceres_logging.h"
+#include "optim/line_pose_marginals.h"
 
 namespace slt {
 namespace {
+
+// Up to this many keyframes in a solve the lines' covariances come through the poses' Schur
+// complement (AddKeyframeAndSolve), beyond it through the lines' reduced information.
+constexpr int kMaxPoseSchurKeyframes = 64;
 
 // The prior of a carried line: r = S Minus(L, L0), S^T S the inverse of its covariance.
 struct LinePrior {
@@ -193,7 +199,12 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   auto pose_of = [&](size_t k) { return pose_parameters_.data() + kPoseAmbientSize * (k + 1); };
   double* const reference_pose = pose_parameters_.data();
   ceres::Problem problem(BorrowingProblemOptions());
-  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();  // lines eliminated first
+  // The Schur elimination's first group: the lines (a reduced system over the poses), or the
+  // poses when the window holds more keyframes than kMaxPoseSchurKeyframes (a reduced system
+  // over the lines, which grows with their number instead; equal up to rounding).
+  const bool many_poses = static_cast<int>(keyframes_.size()) > kMaxPoseSchurKeyframes;
+  const int line_group = many_poses ? 1 : 0;
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   problem.AddParameterBlock(reference_pose, kPoseAmbientSize);
   problem.SetParameterBlockConstant(reference_pose);
   ordering->AddElementToGroup(reference_pose, 1);
@@ -203,7 +214,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     double* parameters = lines_[line].parameters;
     if (!problem.HasParameterBlock(parameters)) {
       problem.AddParameterBlock(parameters, kLineAmbientSize, &line_manifold_);
-      ordering->AddElementToGroup(parameters, 0);
+      ordering->AddElementToGroup(parameters, line_group);
     }
     for (int c = 0; c < 2; ++c) {
       if (used == costs_.size()) costs_.emplace_back();
@@ -220,7 +231,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
                                                     [&](const Observation& o) { return lines_[o.line].observations > 0; }));
     if (seen < 2) continue;
     problem.AddParameterBlock(pose_of(k), kPoseAmbientSize, &pose_manifold_);
-    ordering->AddElementToGroup(pose_of(k), 1);
+    ordering->AddElementToGroup(pose_of(k), 1 - line_group);
     for (const Observation& o : seen_lines) {
       if (lines_[o.line].usable && !lines_[o.line].triangulated) add(pose_of(k), o.line, o.left, o.right);
     }
@@ -285,9 +296,17 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
     return -1;  // the reference pair: fixed
   };
+  // Two ways to the same blocks, equal up to rounding: through the poses' Schur complement S
+  // (dense over the poses, cubic in their number), which the triangulated lines also need
+  // (their covariance adds the poses'), or through the lines' reduced information
+  // A - B D^-1 B^T (D block-diagonal: a residual sees one pose), whose inverse's diagonal
+  // blocks are the lines' marginal covariances, cubic in the lines. The poses' form is kept
+  // up to kMaxPoseSchurKeyframes keyframes so that earlier results reproduce to the bit.
+  const int pose_count = pose_rows / 6;
+  const bool pose_schur = options_.min_triangulation_angle_deg > 0.0 || !many_poses;
   Eigen::MatrixXd a_blocks = Eigen::MatrixXd::Zero(line_rows, 4);  // A_i stacked
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(line_rows, pose_rows);
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(pose_rows, pose_rows);
+  std::vector<Matrix6d> d_blocks(static_cast<size_t>(pose_count), Matrix6d::Zero());
   Eigen::Vector2d residual;
   Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
   Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
@@ -304,13 +323,17 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     if (p < 0) continue;
     pose_manifold_.PlusJacobian(residuals_[k].pose, pose_plus.data());
     const Eigen::Matrix<double, 2, 6> j_pose = d_pose * pose_plus;
-    d.block<6, 6>(p, p).noalias() += j_pose.transpose() * j_pose;
+    d_blocks[static_cast<size_t>(p / 6)].noalias() += j_pose.transpose() * j_pose;
     b.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
   }
   Eigen::MatrixXd a_inverse_b(line_rows, pose_rows);
   std::vector<Eigen::Matrix4d> a_inverse(lines_.size());
   std::vector<bool> ok(lines_.size(), false);
-  Eigen::MatrixXd schur = d;
+  Eigen::MatrixXd schur;
+  if (pose_schur) {
+    schur = Eigen::MatrixXd::Zero(pose_rows, pose_rows);
+    for (int k = 0; k < pose_count; ++k) schur.block<6, 6>(6 * k, 6 * k) = d_blocks[static_cast<size_t>(k)];
+  }
   for (size_t i = 0; i < lines_.size(); ++i) {
     const int l = line_offset[i];
     if (l < 0) continue;
@@ -324,21 +347,47 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       continue;
     }
     ok[i] = true;
+    if (!pose_schur) continue;
     a_inverse[i] = ldlt.solve(Eigen::Matrix4d::Identity());
     a_inverse_b.middleRows<4>(l).noalias() = a_inverse[i] * b.middleRows<4>(l);
     schur.noalias() -= b.middleRows<4>(l).transpose() * a_inverse_b.middleRows<4>(l);
   }
-  const Eigen::LDLT<Eigen::MatrixXd> schur_ldlt(schur);
-  const bool poses_determined = pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive();
+  bool poses_determined = false;
   Eigen::MatrixXd schur_inverse;  // the keyframe poses' marginal covariance
-  if (poses_determined) {
-    schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
+  if (pose_schur) {
+    const Eigen::LDLT<Eigen::MatrixXd> schur_ldlt(schur);
+    poses_determined = pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive();
+    if (poses_determined) {
+      schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
+      for (size_t i = 0; i < lines_.size(); ++i) {
+        const int l = line_offset[i];
+        if (l < 0 || !ok[i]) continue;
+        const auto x = a_inverse_b.middleRows<4>(l);
+        lines_[i].covariance = a_inverse[i] + x * schur_inverse * x.transpose();
+        lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
+      }
+    }
+  } else if (pose_rows > 0) {
+    // The lines with a positive-definite own block, as the poses' form keeps them
+    // (optim/line_pose_marginals.h).
+    std::vector<int> kept;
     for (size_t i = 0; i < lines_.size(); ++i) {
-      const int l = line_offset[i];
-      if (l < 0 || !ok[i]) continue;
-      const auto x = a_inverse_b.middleRows<4>(l);
-      lines_[i].covariance = a_inverse[i] + x * schur_inverse * x.transpose();
-      lines_[i].refined = lines_[i].covariance.allFinite() && lines_[i].covariance.diagonal().minCoeff() > 0.0;
+      if (line_offset[i] >= 0 && ok[i]) kept.push_back(static_cast<int>(i));
+    }
+    std::vector<Eigen::Matrix4d> kept_a(kept.size());
+    Eigen::MatrixXd kept_b(4 * static_cast<Eigen::Index>(kept.size()), pose_rows);
+    for (size_t j = 0; j < kept.size(); ++j) {
+      kept_a[j] = a_blocks.block<4, 4>(line_offset[kept[j]], 0);
+      kept_b.middleRows<4>(4 * static_cast<Eigen::Index>(j)) = b.middleRows<4>(line_offset[kept[j]]);
+    }
+    std::vector<Eigen::Matrix4d> covariances;
+    poses_determined = LineMarginalCovariances(kept_a, kept_b, d_blocks, &covariances);
+    if (poses_determined) {
+      for (size_t j = 0; j < kept.size(); ++j) {
+        LineState& l = lines_[static_cast<size_t>(kept[j])];
+        l.covariance = covariances[j];
+        l.refined = l.covariance.allFinite() && l.covariance.diagonal().minCoeff() > 0.0;
+      }
     }
   }
   if (poses_determined) RefineTriangulatedLines(pose_of, offset_of_pose, schur_inverse, problem, &used);

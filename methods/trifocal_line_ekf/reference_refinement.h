@@ -33,6 +33,11 @@
 // Gauss-Newton information: marginalised over the keyframe poses, the correlations between
 // lines left out), and with move_pose moves the current pose to the solved newest keyframe's
 // pose (the current frame is that keyframe). Measured effect: docs/long_sequences.md.
+// Up to 64 keyframes the solve and the covariances eliminate the lines (a reduced system over
+// the poses); a larger window (max_keyframes, e.g. every 5th frame of a whole reference pair's
+// life) eliminates the poses instead (a reduced system over the lines,
+// optim/line_pose_marginals.h), whose cost grows with the lines rather than cubically with
+// the keyframes. The two agree up to rounding; the switch keeps earlier results to the bit.
 //
 // Repeatable to the bit: Ceres orders the blocks of each elimination group by address, so the
 // blocks of a solve live in buffers whose address order is their index order (the lines in

@@ -5,6 +5,9 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <random>
@@ -261,9 +264,10 @@ TEST(ReferenceRefinerTest, RefinementNeedsTheReferenceToCurrentDirectionAndPropa
 }
 
 // The tracker with the refinement over a sequence: every pose and covariance, in order.
-std::vector<TrackerOutput> TrackWithRefinement(const StereoSequence& sequence) {
-  // 8 keyframes: over 250 frames the window is full and drops keyframes.
-  const nlohmann::json options = {{"measurement", {{"refinement", {{"enabled", true}, {"max_keyframes", 8}}}}}};
+// `refinement` adds to {"enabled": true}.
+std::vector<TrackerOutput> TrackWithRefinement(const StereoSequence& sequence, const nlohmann::json& refinement) {
+  nlohmann::json options = {{"measurement", {{"refinement", {{"enabled", true}}}}}};
+  options["measurement"]["refinement"].update(refinement);
   std::unique_ptr<PoseTracker> tracker = TrifocalLineEkfInfo().create(options, "test");
   tracker->Reset(sequence.rig);
   std::vector<TrackerOutput> outputs;
@@ -277,6 +281,18 @@ bool BitwiseEqual(const TrackerOutput& a, const TrackerOutput& b) {
          std::memcmp(a.covariance.data(), b.covariance.data(), 36 * sizeof(double)) == 0 && a.status == b.status;
 }
 
+// The first `frames` frames of the room loop of experiments/configs/long_room.json.
+SimulatedSequence RoomLoopStart(int frames, std::uint64_t seed = 3) {
+  return Simulate(SimulationConfigFromJson(
+      {{"frames", frames},
+       {"seed", seed},
+       {"scene", {{"type", "room"}}},
+       {"motion", {{"type", "loop"}, {"loop", {{"radius_x_m", 0.2}, {"radius_z_m", 0.28}}}}},
+       {"observation", {{"clip_to_image", true}}},
+       {"noise", {{"endpoint_px", 1.0}}}},
+      "test"));
+}
+
 TEST(ReferenceRefinerTest, RoomLoopIsBitwiseRepeatableWhateverTheHeapAndThread) {
   // The room loop of experiments/configs/long_room.json, shortened: 25 keyframes, so the window
   // (8 keyframes here) drops some. A second run on another thread (another malloc arena) with the
@@ -284,15 +300,10 @@ TEST(ReferenceRefinerTest, RoomLoopIsBitwiseRepeatableWhateverTheHeapAndThread) 
   // allocations land in a different address order) must give the same bits: nothing in the
   // refinement may depend on addresses (Ceres orders each elimination group by pointer),
   // uninitialised memory or threads.
-  const SimulatedSequence sim = Simulate(SimulationConfigFromJson(
-      {{"frames", 250},
-       {"seed", 3},
-       {"scene", {{"type", "room"}}},
-       {"motion", {{"type", "loop"}, {"loop", {{"radius_x_m", 0.2}, {"radius_z_m", 0.28}}}}},
-       {"observation", {{"clip_to_image", true}}},
-       {"noise", {{"endpoint_px", 1.0}}}},
-      "test"));
-  const std::vector<TrackerOutput> first = TrackWithRefinement(sim.sequence);
+  const SimulatedSequence sim = RoomLoopStart(250);
+  // 8 keyframes: over 250 frames the window is full and drops keyframes.
+  const nlohmann::json refinement = {{"max_keyframes", 8}};
+  const std::vector<TrackerOutput> first = TrackWithRefinement(sim.sequence, refinement);
 
   std::vector<TrackerOutput> second;
   std::thread([&] {
@@ -304,7 +315,7 @@ TEST(ReferenceRefinerTest, RoomLoopIsBitwiseRepeatableWhateverTheHeapAndThread) 
     }
     std::shuffle(blocks.begin(), blocks.end(), random);
     blocks.resize(blocks.size() / 2);
-    second = TrackWithRefinement(sim.sequence);
+    second = TrackWithRefinement(sim.sequence, refinement);
   }).join();
 
   ASSERT_EQ(first.size(), second.size());
@@ -315,6 +326,39 @@ TEST(ReferenceRefinerTest, RoomLoopIsBitwiseRepeatableWhateverTheHeapAndThread) 
     }
   }
   EXPECT_EQ(differing, 0) << "first at frame " << first_differing;
+}
+
+TEST(ReferenceRefinerTest, WindowBeyond64KeyframesTracksAsTheSmallerOne) {
+  // A keyframe every frame: 64 by frame 64, then the window of 65 eliminates the poses
+  // (optim/line_pose_marginals.h) while the window of 64 keeps the lines' elimination and drops
+  // its nearest keyframe. Up to the switch the two runs are the same to the bit; after it their
+  // windows differ by one keyframe of 65, so their poses and reported deviations must stay close.
+  const SimulatedSequence sim = RoomLoopStart(90);
+  const std::vector<TrackerOutput> lines_eliminated =
+      TrackWithRefinement(sim.sequence, {{"keyframe_interval", 1}, {"max_keyframes", 64}});
+  const std::vector<TrackerOutput> poses_eliminated =
+      TrackWithRefinement(sim.sequence, {{"keyframe_interval", 1}, {"max_keyframes", 65}});
+  ASSERT_EQ(lines_eliminated.size(), poses_eliminated.size());
+  const size_t switch_frame = 64;
+  for (size_t k = 0; k < switch_frame; ++k) ASSERT_TRUE(BitwiseEqual(lines_eliminated[k], poses_eliminated[k])) << "frame " << k;
+  double largest_difference_m = 0.0, largest_sigma_ratio = 1.0, largest_error_m = 0.0;
+  for (size_t k = switch_frame; k < lines_eliminated.size(); ++k) {
+    const TrackerOutput& a = lines_eliminated[k];
+    const TrackerOutput& b = poses_eliminated[k];
+    EXPECT_NE(b.status, TrackingStatus::kLost) << "frame " << k;
+    largest_difference_m = std::max(largest_difference_m, (a.cam_from_world.Inverse().translation -
+                                                           b.cam_from_world.Inverse().translation).norm());
+    const double sigma_a = std::sqrt(a.covariance.bottomRightCorner<3, 3>().trace());
+    const double sigma_b = std::sqrt(b.covariance.bottomRightCorner<3, 3>().trace());
+    largest_sigma_ratio = std::max({largest_sigma_ratio, sigma_a / sigma_b, sigma_b / sigma_a});
+    largest_error_m = std::max(largest_error_m, (b.cam_from_world.Inverse().translation -
+                                                 sim.ground_truth[k].world_from_cam.translation).norm());
+  }
+  std::printf("poses' elimination from frame %zu: position within %.3f mm of the lines' elimination's, sigma ratio "
+              "%.3f, error up to %.2f mm\n", switch_frame, 1e3 * largest_difference_m, largest_sigma_ratio, 1e3 * largest_error_m);
+  EXPECT_LT(largest_difference_m, 1e-3);
+  EXPECT_LT(largest_sigma_ratio, 1.1);
+  EXPECT_LT(largest_error_m, 0.03);  // tracking, not diverging
 }
 
 // Mean 6-dof NEES of the tracker with `options` on `sim` (evaluation/consistency.h).
@@ -336,14 +380,7 @@ TEST(StructureConsiderTracking, RoomLoopCovarianceIsLessOverconfidentWithTheRefe
   // measured for a hundred frames and more. Counting their error as white noise in every frame
   // makes the covariance far too small (NEES 114, 6 when consistent); with the error as consider
   // parameters the NEES must come down (35).
-  const SimulatedSequence sim = Simulate(SimulationConfigFromJson(
-      {{"frames", 300},
-       {"seed", TrialSeed(1, 0)},
-       {"scene", {{"type", "room"}}},
-       {"motion", {{"type", "loop"}, {"loop", {{"radius_x_m", 0.2}, {"radius_z_m", 0.28}}}}},
-       {"observation", {{"clip_to_image", true}}},
-       {"noise", {{"endpoint_px", 1.0}}}},
-      "test"));
+  const SimulatedSequence sim = RoomLoopStart(300, TrialSeed(1, 0));
   const double white = MeanNees(sim, nlohmann::json::object());
   const double considered = MeanNees(sim, {{"measurement", {{"consider_structure", true}}}});
   EXPECT_LT(considered, 0.5 * white) << "white-noise NEES " << white;
