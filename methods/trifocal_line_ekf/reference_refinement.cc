@@ -326,7 +326,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     d_blocks[static_cast<size_t>(p / 6)].noalias() += j_pose.transpose() * j_pose;
     b.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
   }
-  Eigen::MatrixXd a_inverse_b(line_rows, pose_rows);
+  Eigen::MatrixXd a_inverse_b(pose_schur ? line_rows : 0, pose_rows);  // the poses' form only
   std::vector<Eigen::Matrix4d> a_inverse(lines_.size());
   std::vector<bool> ok(lines_.size(), false);
   Eigen::MatrixXd schur;
@@ -343,7 +343,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
     const Eigen::LDLT<Eigen::Matrix4d> ldlt(a_blocks.block<4, 4>(l, 0));
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
-      a_inverse_b.middleRows<4>(l).setZero();
+      if (pose_schur) a_inverse_b.middleRows<4>(l).setZero();
       continue;
     }
     ok[i] = true;
