@@ -160,7 +160,34 @@ const OptionSchema<OrderingCheck>& OrderingSchema() {
       OptionSchema<O>()
           .Field("better", &O::better, {}, "id of the method with the lower errors")
           .Field("worse", &O::worse, {}, "id of the method with the higher errors")
-          .Field("at", &O::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)");
+          .Field("at", &O::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)")
+          .Custom(
+              "metrics", [](JsonReader& r, O* o) { r.Get("metrics", &o->metrics); },
+              [](const O& o) { return nlohmann::json(o.metrics); }, "metric names",
+              "trial metrics compared (means over the trials)", [](const O& o) {
+                for (const std::string& m : o.metrics) {
+                  if (TrialMetricFromName(m) < 0) return "unknown metric '" + m + "'";
+                }
+                return o.metrics.empty() ? std::string("at least one metric") : std::string();
+              });
+  return schema;
+}
+
+const OptionSchema<BoundCheck>& BoundSchema() {
+  using B = BoundCheck;
+  static const OptionSchema<B> schema =
+      OptionSchema<B>()
+          .Field("method", &B::method, {}, "id of the method bounded")
+          .Field("metric", &B::metric, {}, "a trial metric (summary.csv's columns without _mean)")
+          .Field("min", &B::min, AnyNumber(), "lowest mean allowed")
+          .Field("max", &B::max, AnyNumber(), "highest mean allowed (1e9: none)")
+          .Field("percent_of_path", &B::percent_of_path, "bound 100 mean(metric) / mean(path_length_m) instead")
+          .Field("at", &B::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)")
+          .Check("metric",
+                 [](const B& b) {
+                   return TrialMetricFromName(b.metric) < 0 ? "unknown metric '" + b.metric + "'" : std::string();
+                 })
+          .Check("max", [](const B& b) { return b.max < b.min ? "must not be below min" : ""; });
   return schema;
 }
 
@@ -253,6 +280,7 @@ const OptionSchema<ExperimentConfig>& ExperimentSchema() {
               [](const C& c) { return nlohmann::json(c.table_metrics); }, "metric names", "summary table columns")
           .Array("plots", &C::plots, PlotSchema(), "PNGs drawn (default: follow the sweep and the flags)")
           .Array("expect_better", &C::expect_better, OrderingSchema(), "expected orderings, as pairs")
+          .Array("expect_bounds", &C::expect_bounds, BoundSchema(), "expected bounds on a method's mean metrics")
           .Check("name",
                  [](const C& c) {
                    return c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos || c.name[0] == '.'
@@ -304,17 +332,29 @@ void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::strin
   }
 }
 
-void CheckOrdering(const ExperimentConfig& c, const OrderingCheck& o, const std::string& where, const std::string& key) {
-  for (const auto& [side, id] : {std::pair<const char*, std::string>{"better", o.better}, {"worse", o.worse}}) {
-    if (MethodIndex(c, id) < 0) ThrowOptionError(where, key, side, "'" + id + "' is not the id of a method of this config");
-  }
-  for (const auto& [parameter, value] : o.at.items()) {
+// The sweep-point selection `at` of an ordering or a bound: each key a swept parameter, each value one of its values.
+void CheckAt(const ExperimentConfig& c, const nlohmann::json& at, const std::string& where, const std::string& key) {
+  for (const auto& [parameter, value] : at.items()) {
     bool found = false;
     for (const SweepAxis& a : c.sweep) {
       found = found || (a.parameter == parameter && std::find(a.values.begin(), a.values.end(), value) != a.values.end());
     }
     if (!found) ThrowOptionError(where, key, "at", parameter + " = " + value.dump() + " is not a value of a swept parameter");
   }
+}
+
+void CheckOrdering(const ExperimentConfig& c, const OrderingCheck& o, const std::string& where, const std::string& key) {
+  for (const auto& [side, id] : {std::pair<const char*, std::string>{"better", o.better}, {"worse", o.worse}}) {
+    if (MethodIndex(c, id) < 0) ThrowOptionError(where, key, side, "'" + id + "' is not the id of a method of this config");
+  }
+  CheckAt(c, o.at, where, key);
+}
+
+void CheckBound(const ExperimentConfig& c, const BoundCheck& b, const std::string& where, const std::string& key) {
+  if (MethodIndex(c, b.method) < 0) {
+    ThrowOptionError(where, key, "method", "'" + b.method + "' is not the id of a method of this config");
+  }
+  CheckAt(c, b.at, where, key);
 }
 
 // The simulation of a sweep point: the base JSON with the point's values set, read and checked. Errors read "<where>: key 'simulation.<key>': <reason>", with
@@ -386,6 +426,7 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
   const size_t repeat = FirstRepeat(c.plots, [](const PlotSpec& p) { return p.file; });
   if (repeat < c.plots.size()) ThrowOptionError(where, IndexedKey("plots", repeat), "file", "used twice");
   for (size_t i = 0; i < c.expect_better.size(); ++i) CheckOrdering(c, c.expect_better[i], where, IndexedKey("expect_better", i));
+  for (size_t i = 0; i < c.expect_bounds.size(); ++i) CheckBound(c, c.expect_bounds[i], where, IndexedKey("expect_bounds", i));
 
   if (!c.datasets.empty()) {
     // Frame counts are known when the datasets are opened; errors are read at the last frame.

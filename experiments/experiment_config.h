@@ -60,13 +60,28 @@ struct PlotSpec {
   std::vector<ReportedValue> paper;
 };
 
-// An expected ordering: `better` has a lower mean rotation and a lower mean translation error
-// than `worse` at the metrics frame, at every sweep point whose values match `at` (sweep
-// parameter -> value; empty = every point). Checked by experiments_regression_test; a method
-// not named in any pair (a new baseline) can rank anywhere.
+// An expected ordering: `better` has a lower mean than `worse` of each of `metrics` (by default
+// the rotation and the translation error at the metrics frame), at every sweep point whose values
+// match `at` (sweep parameter -> value; empty = every point). Checked by
+// experiments_regression_test; a method not named in any pair (a new baseline) can rank anywhere.
 struct OrderingCheck {
   std::string better;
   std::string worse;
+  nlohmann::json at = nlohmann::json::object();
+  std::vector<std::string> metrics = {"rot_err_deg", "trans_err_m"};
+};
+
+// An expected bound on one method's result, at every sweep point whose values match `at`:
+//     min <= mean of `metric` over the trials with finite poses <= max,
+// or, with percent_of_path, min <= 100 * mean(metric) / mean(path_length_m) <= max (the issue
+// bounds of docs/long_sequences.md: ATE and maximum error as % of the path). Checked with the
+// orderings (experiments/regression.h). Every trial metric is non-negative, hence min's default.
+struct BoundCheck {
+  std::string method;
+  std::string metric;
+  double min = 0.0;
+  double max = 1e9;
+  bool percent_of_path = false;
   nlohmann::json at = nlohmann::json::object();
 };
 
@@ -103,6 +118,7 @@ struct ExperimentConfig {
   std::vector<std::string> table_metrics = {"rot_err_deg", "trans_err_m", "time_us"};
   std::vector<PlotSpec> plots;
   std::vector<OrderingCheck> expect_better;
+  std::vector<BoundCheck> expect_bounds;
   // Recorded sequences instead of the simulation: then "simulation" and "sweep" must be absent,
   // trials is 1 (a recorded sequence has no random draws), and the sweep is one axis
   // "dataset" whose values are the datasets' labels, so that tables and plots group by dataset.

@@ -102,6 +102,20 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "yu_point_ekf"}, {"worse", "trifocal_line_ekf"}, {"at", {{"frames", 3}}}}}}})
                 .find("key 'expect_better[0].at'"),
             std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "yu_point_ekf"}, {"worse", "trifocal_line_ekf"}, {"metrics", {"ate"}}}}}})
+                .find("key 'expect_better[0].metrics': unknown metric 'ate'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "nobody"}, {"metric", "nees"}}}}}).find("key 'expect_bounds[0].method'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "speed"}}}}})
+                .find("key 'expect_bounds[0].metric': unknown metric 'speed'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"min", 4}, {"max", 3}}}}})
+                .find("key 'expect_bounds[0].max': must not be below min"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"at", {{"frames", 3}}}}}}})
+                .find("key 'expect_bounds[0].at'"),
+            std::string::npos);
   EXPECT_NE(ErrorOf({{"name", "a/b"}}).find("key 'name'"), std::string::npos);
 }
 
@@ -287,6 +301,24 @@ TEST(ExperimentConfig, DatasetErrorsNameTheKey) {
 // The configs users have written keep loading, and every committed config.resolved.json reads
 // back to the same values (its "resolved" section aside): the schema writes what the hand-written
 // writer wrote.
+// Every value of `written` stands in `rewritten` at the same place: objects key by key, arrays
+// element by element (same length); `rewritten` may have more keys in an object.
+void ExpectWrittenKeptIn(const json& written, const json& rewritten, const std::string& where) {
+  if (written.is_object() && rewritten.is_object()) {
+    for (const auto& [key, value] : written.items()) {
+      if (!rewritten.contains(key)) {
+        ADD_FAILURE() << where << "." << key << " is not written back";
+        continue;
+      }
+      ExpectWrittenKeptIn(value, rewritten[key], where + "." + key);
+    }
+  } else if (written.is_array() && rewritten.is_array() && written.size() == rewritten.size()) {
+    for (size_t i = 0; i < written.size(); ++i) ExpectWrittenKeptIn(written[i], rewritten[i], IndexedKey(where, i));
+  } else {
+    EXPECT_EQ(rewritten, written) << where;
+  }
+}
+
 TEST(ExperimentConfig, EveryConfigLoadsAndEveryCommittedResolvedConfigRoundTrips) {
   const std::vector<std::string> configs = AvailableConfigs();
   ASSERT_FALSE(configs.empty());
@@ -294,6 +326,7 @@ TEST(ExperimentConfig, EveryConfigLoadsAndEveryCommittedResolvedConfigRoundTrips
     EXPECT_NO_THROW(ReadExperimentConfig(FindConfigFile(name))) << name;
   }
   int resolved_files = 0;
+  const json defaults = ExperimentConfigToJson(ExperimentConfig());
   for (const char* folder : {"results", "results/reference"}) {
     for (const auto& entry : std::filesystem::directory_iterator(SourceDir() + "/" + folder)) {
       const std::string path = (entry.path() / "config.resolved.json").string();
@@ -301,14 +334,13 @@ TEST(ExperimentConfig, EveryConfigLoadsAndEveryCommittedResolvedConfigRoundTrips
       json written = ReadJsonFile(path);
       written.erase("resolved");
       const json rewritten = ExperimentConfigToJson(ExperimentConfigFromJson(written, path));
-      // Plot fields added since a result was made are written with their defaults; the rest is
-      // the same, and the rewrite reads back to itself.
-      for (const auto& [key, value] : written.items()) {
-        if (key != "plots") {
-          EXPECT_EQ(rewritten[key], value) << path << " " << key;
-        }
+      // Keys added since a result was made are written with their defaults (at the top level:
+      // the defaults of an empty config); every written value is read back the same, and the
+      // rewrite reads back to itself.
+      ExpectWrittenKeptIn(written, rewritten, path);
+      for (const auto& [key, value] : rewritten.items()) {
+        if (!written.contains(key)) EXPECT_EQ(value, defaults.at(key)) << path << " " << key;
       }
-      EXPECT_EQ(rewritten.size(), written.size()) << path;
       EXPECT_EQ(ExperimentConfigToJson(ExperimentConfigFromJson(rewritten, path)), rewritten) << path;
       ++resolved_files;
     }

@@ -170,6 +170,18 @@ TEST(Regression, ToleranceNewMethodsAndUnregisteredReferenceMethods) {
   ASSERT_EQ(worse.failures.size(), 1u);
   EXPECT_NE(worse.failures[0].find("'trifocal_line_ekf' at noise.endpoint_px = 0: rot_err_deg_mean"), std::string::npos)
       << worse.failures[0];
+  // The error along the run is guarded too (a loop's final error can hide its middle): the ATE in
+  // rotation and translation and the largest translation error, each on its own.
+  for (const int metric : {kAteRotDeg, kAteTransM, kMaxTransErrM}) {
+    std::vector<SummaryRow> r = rows;
+    r[1].metrics[metric].mean *= 1.2;
+    EXPECT_TRUE(CompareWithReference(c, r, same, reference_config).ok()) << TrialMetricName(metric);
+    r[1].metrics[metric].mean = rows[1].metrics[metric].mean * 1.3;
+    const RegressionReport along = CompareWithReference(c, r, same, reference_config);
+    ASSERT_EQ(along.failures.size(), 1u) << TrialMetricName(metric);
+    EXPECT_NE(along.failures[0].find(std::string(": ") + TrialMetricName(metric) + "_mean"), std::string::npos)
+        << along.failures[0];
+  }
   // Near zero, the absolute floors apply (0.5 mm, 0.02 deg): against a reference of 0.2 mm and
   // 0.01 deg, +0.4 mm and +0.015 deg pass although 1.25x the reference would not; +0.6 mm and
   // +0.025 deg fail.
@@ -227,25 +239,64 @@ TEST(Regression, ToleranceNewMethodsAndUnregisteredReferenceMethods) {
 TEST(Regression, ExpectedOrderingPairs) {
   ExperimentConfig c = TwoMethodConfig();
   const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
-  EXPECT_TRUE(CheckOrderings(c, rows).ok());  // nothing expected
+  EXPECT_TRUE(CheckExpectations(c, rows).ok());  // nothing expected
   EXPECT_EQ(SummaryMarkdown(c, rows).find("lowest first"), std::string::npos);
   // Method 0 has the same rotation error and half the translation error of method 1 at point 0,
   // but a larger rotation error at point 1 (where method 1 lost a trial).
   c.expect_better = {{"trifocal_line_ekf", c.methods[1].Id()}};
-  const RegressionReport report = CheckOrderings(c, rows);
+  const RegressionReport report = CheckExpectations(c, rows);
   ASSERT_EQ(report.failures.size(), 1u) << report.table;
   EXPECT_NE(report.failures[0].find("ordering is lost at noise.endpoint_px = 1.5"), std::string::npos) << report.failures[0];
+  // On the translation error alone it holds at both points (method 0 has half of method 1's).
+  c.expect_better[0].metrics = {"trans_err_m"};
+  EXPECT_TRUE(CheckExpectations(c, rows).ok()) << CheckExpectations(c, rows).table;
+  c.expect_better[0].metrics = {"rot_err_deg", "trans_err_m"};
   // Restricted to the first point, the pair holds.
   c.expect_better[0].at = {{"noise.endpoint_px", 0}};
-  EXPECT_TRUE(CheckOrderings(c, rows).ok()) << CheckOrderings(c, rows).table;
+  EXPECT_TRUE(CheckExpectations(c, rows).ok()) << CheckExpectations(c, rows).table;
   // The other way round it fails on the translation error there.
   c.expect_better = {{c.methods[1].Id(), "trifocal_line_ekf", {{"noise.endpoint_px", 0}}}};
-  const RegressionReport other = CheckOrderings(c, rows);
+  const RegressionReport other = CheckExpectations(c, rows);
   ASSERT_FALSE(other.ok());
   EXPECT_NE(other.failures[0].find("trans_err_m"), std::string::npos);
   // The summary lists the full ordering at every point once a config states orderings.
   const std::string md = SummaryMarkdown(c, rows);
   EXPECT_NE(md.find("- noise.endpoint_px = 1.5: " + c.methods[1].Id()), std::string::npos) << md;
+}
+
+TEST(Regression, ExpectedBounds) {
+  ExperimentConfig c = TwoMethodConfig();
+  const std::vector<SummaryRow> rows = SummarizeTrials(c, SyntheticTrials(c));
+  // Method 1's mean translation error: 0.002 * (1, 2, 3) -> 0.004 at point 0; at point 1 its
+  // last trial lost its pose, so 0.002 * (1, 2) -> 0.003.
+  const std::string id = c.methods[1].Id();
+  c.expect_bounds = {{id, "trans_err_m", 0.0, 0.0035}};
+  RegressionReport report = CheckExpectations(c, rows);
+  ASSERT_EQ(report.failures.size(), 1u) << report.table;
+  EXPECT_NE(report.failures[0].find("bound is lost at noise.endpoint_px = 0: '" + id + "' trans_err_m mean = 0.004"),
+            std::string::npos)
+      << report.failures[0];
+  EXPECT_NE(report.table.find("ok    '" + id + "' trans_err_m mean 0.003 in [0, 0.0035] at noise.endpoint_px = 1.5"),
+            std::string::npos)
+      << report.table;
+  // Selected by `at`, only the passing point is checked; a lower bound fails from below.
+  c.expect_bounds[0].at = {{"noise.endpoint_px", 1.5}};
+  EXPECT_TRUE(CheckExpectations(c, rows).ok());
+  c.expect_bounds = {{id, "trans_err_m", 0.0031, 1e9}};
+  report = CheckExpectations(c, rows);
+  ASSERT_EQ(report.failures.size(), 1u) << report.table;
+  EXPECT_NE(report.failures[0].find("at noise.endpoint_px = 1.5"), std::string::npos) << report.failures[0];
+  EXPECT_NE(report.failures[0].find("outside [0.0031, -]"), std::string::npos) << report.failures[0];
+  // As a percentage of the path: every synthetic metric m is 0.1 m + 1/3 (plus 1e-17 k), so the
+  // path (kPathLengthM) is 0.1 kPathLengthM + 1/3 and the ATE 0.1 kAteTransM + 1/3.
+  const double ate = 0.1 * kAteTransM + 1.0 / 3.0, path = 0.1 * kPathLengthM + 1.0 / 3.0;
+  const double percent = 100.0 * ate / path;
+  c.expect_bounds = {{id, "ate_trans_m", 0.0, percent * 1.001, true}};
+  EXPECT_TRUE(CheckExpectations(c, rows).ok()) << CheckExpectations(c, rows).table;
+  c.expect_bounds[0].max = percent * 0.999;
+  report = CheckExpectations(c, rows);
+  ASSERT_EQ(report.failures.size(), 2u) << report.table;
+  EXPECT_NE(report.failures[0].find("ate_trans_m mean as % of the path"), std::string::npos) << report.failures[0];
 }
 
 }  // namespace

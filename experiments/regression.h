@@ -1,5 +1,5 @@
-// The expected orderings of a config (expect_better): checked by run_experiment (a note when one
-// does not hold) and by the CI regression check (experiments/regression_test_support.h, which
+// The expected orderings and bounds of a config (expect_better, expect_bounds): checked by
+// run_experiment (a note when one does not hold) and by the CI regression check (experiments/regression_test_support.h, which
 // also compares with the committed references).
 #pragma once
 
@@ -19,8 +19,9 @@ struct RegressionReport {
 };
 
 // Every pair of config.expect_better at every sweep point it selects: `better` has the lower
-// mean rotation and translation error at the metrics frame (nothing to check when empty). The
-// table also lists the full ordering at every point.
-RegressionReport CheckOrderings(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
+// mean rotation and translation error at the metrics frame; every bound of config.expect_bounds
+// at every point it selects holds (nothing to check when both are empty). The table lists each
+// comparison and, with orderings, the full ordering at every point.
+RegressionReport CheckExpectations(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
 
 }  // namespace slt

@@ -46,7 +46,7 @@ TEST_P(ExperimentsRegression, WithinToleranceOfTheReference) {
   std::cout << config.name << ": " << run.trials.size() << " trials in " << run.wall_time_s << " s on " << run.threads
             << " threads; outputs in " << options.out_dir << "\n";
 
-  const RegressionReport ordering = CheckOrderings(config, rows);
+  const RegressionReport ordering = CheckExpectations(config, rows);
   std::cout << ordering.table;
   for (const std::string& f : ordering.failures) ADD_FAILURE() << config.name << ": " << f;
 

@@ -69,7 +69,8 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
   const struct {
     int metric;
     double floor;
-  } checked[] = {{kRotErrDeg, kRotFloorDeg}, {kTransErrM, kTransFloorM}};
+  } checked[] = {{kRotErrDeg, kRotFloorDeg},  {kTransErrM, kTransFloorM},    {kAteRotDeg, kRotFloorDeg},
+                 {kAteTransM, kTransFloorM}, {kMaxTransErrM, kTransFloorM}};
   std::set<std::string> no_reference;
   for (const SummaryRow& row : rows) {
     const std::string& id = config.methods.at(row.method).Id();
