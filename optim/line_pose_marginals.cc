@@ -5,7 +5,8 @@
 namespace slt {
 
 bool LineMarginalCovariances(const std::vector<Eigen::Matrix4d>& a, const Eigen::MatrixXd& b,
-                             const std::vector<Matrix6d>& d, std::vector<Eigen::Matrix4d>* covariances) {
+                             const std::vector<Matrix6d>& d, std::vector<Eigen::Matrix4d>* covariances, int pose,
+                             Matrix6d* pose_covariance) {
   const Eigen::Index rows = 4 * static_cast<Eigen::Index>(a.size());
   if (b.rows() != rows || b.cols() != 6 * static_cast<Eigen::Index>(d.size())) return false;
   Eigen::MatrixXd reduced = Eigen::MatrixXd::Zero(rows, rows);
@@ -24,6 +25,12 @@ bool LineMarginalCovariances(const std::vector<Eigen::Matrix4d>& a, const Eigen:
   covariances->resize(a.size());
   for (size_t i = 0; i < a.size(); ++i) {
     (*covariances)[i] = inverse.block<4, 4>(4 * static_cast<Eigen::Index>(i), 4 * static_cast<Eigen::Index>(i));
+  }
+  if (pose_covariance != nullptr && pose >= 0 && pose < static_cast<int>(d.size())) {
+    const Eigen::LLT<Matrix6d> d_llt(d[static_cast<size_t>(pose)]);
+    const Matrix6d d_inverse = d_llt.solve(Matrix6d::Identity());
+    const Eigen::MatrixXd b_d_inverse = b.middleCols<6>(6 * static_cast<Eigen::Index>(pose)) * d_inverse;
+    *pose_covariance = d_inverse + b_d_inverse.transpose() * inverse * b_d_inverse;
   }
   return true;
 }

@@ -20,10 +20,14 @@
 namespace slt {
 
 // Sets (*covariances)[i] to the 4 x 4 block of line i of H^-1 (above) from A's blocks `a`
-// (n of them), B (4n x 6m, column block k for pose k) and D's blocks `d` (m of them). Returns
-// false, leaving `covariances` unspecified, when a D_k or the reduced information is not
+// (n of them), B (4n x 6m, column block k for pose k) and D's blocks `d` (m of them). With
+// `pose` in [0, m) and `pose_covariance` non-null, also sets *pose_covariance to pose k's block
+// of H^-1 (its marginal covariance, the lines' uncertainty and all their correlations included):
+//     D_k^-1 + D_k^-1 B_k^T C B_k D_k^-1.
+// Returns false, leaving the outputs unspecified, when a D_k or the reduced information is not
 // positive definite (a pose or a line direction the data do not determine).
 bool LineMarginalCovariances(const std::vector<Eigen::Matrix4d>& a, const Eigen::MatrixXd& b,
-                             const std::vector<Matrix6d>& d, std::vector<Eigen::Matrix4d>* covariances);
+                             const std::vector<Matrix6d>& d, std::vector<Eigen::Matrix4d>* covariances,
+                             int pose = -1, Matrix6d* pose_covariance = nullptr);
 
 }  // namespace slt

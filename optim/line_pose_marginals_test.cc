@@ -57,6 +57,24 @@ TEST(LineMarginalCovariances, EqualTheLinesBlocksOfTheInverseInformation) {
   }
 }
 
+TEST(LineMarginalCovariances, GiveAPoseBlockOfTheInverseInformation) {
+  std::mt19937 rng(10);
+  const int lines = 12, poses = 40;
+  const Bipartite x = RandomBipartite(lines, poses, &rng);
+  const Eigen::MatrixXd inverse = x.h.ldlt().solve(Eigen::MatrixXd::Identity(x.h.rows(), x.h.cols()));
+  std::vector<Eigen::Matrix4d> covariances;
+  for (const int pose : {0, 17, poses - 1}) {
+    Matrix6d pose_covariance = Matrix6d::Zero();
+    ASSERT_TRUE(LineMarginalCovariances(x.a, x.b, x.d, &covariances, pose, &pose_covariance));
+    const Matrix6d expected = inverse.block<6, 6>(4 * lines + 6 * pose, 4 * lines + 6 * pose);
+    EXPECT_LT((pose_covariance - expected).norm(), 1e-9 * expected.norm()) << "pose " << pose;
+    // More than the pose's own block alone gives (D_k^-1: the lines held fixed).
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> excess(pose_covariance - x.d[pose].inverse());
+    EXPECT_GT(excess.eigenvalues().minCoeff(), -1e-12);
+    EXPECT_GT(excess.eigenvalues().maxCoeff(), 1e-3 * expected.norm());
+  }
+}
+
 TEST(LineMarginalCovariances, RefuseAnUndeterminedPose) {
   std::mt19937 rng(8);
   Bipartite x = RandomBipartite(4, 3, &rng);

@@ -18,6 +18,7 @@
 #include "common/options.h"
 #include "dataset/stereo_sequence.h"
 #include "geometry/rigid3.h"
+#include "geometry/se3.h"
 
 namespace slt {
 
@@ -103,6 +104,16 @@ class FeatureModel {
   virtual bool RefineStructure(const Rigid3d& /*cam_from_ref*/, const std::vector<int>& /*used*/,
                                Rigid3d* /*refined_cam_from_ref*/) {
     return false;
+  }
+  // After RefineStructure: a pose covariance *covariance the model derives from the
+  // refinement's (its marginal of the current frame) and the filter's, `filter_covariance`
+  // (both in the filter's left perturbation of cam_from_ref), and what it is for: kNone, nothing;
+  // kFilter, the filter's pose covariance becomes it; kReport, the filter keeps its own and
+  // only the reported covariance is widened to it, by the difference, until the next solve.
+  enum class RefinedCovarianceUse { kNone, kFilter, kReport };
+  virtual RefinedCovarianceUse RefinedPoseCovariance(const Matrix6d& /*filter_covariance*/,
+                                                     Matrix6d* /*covariance*/) const {
+    return RefinedCovarianceUse::kNone;
   }
 
   // The error of the reference structure as "consider" parameters of a Schmidt filter

@@ -1,6 +1,7 @@
 #include "methods/stereo_ekf/pose_velocity_filter.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 namespace slt {
 
@@ -90,6 +91,24 @@ void PoseVelocityFilter::CorrectState(const Vector12d& delta, const Matrix12d& p
   covariance_ = 0.5 * (posterior_covariance + posterior_covariance.transpose());
   velocity_ += delta.tail<6>();
   cam_from_ref_ = ExpSE3(delta.head<6>()) * cam_from_ref_;
+}
+
+Matrix6d PoseVelocityFilter::MovePose(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance) {
+  cam_from_ref_ = cam_from_ref;
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> prior(covariance_.topLeftCorner<6, 6>());
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> target(0.5 * (pose_covariance + pose_covariance.transpose()));
+  const Vector6d lambda = prior.eigenvalues();
+  Matrix6d t = Matrix6d::Zero();
+  if (lambda.minCoeff() > 1e-12 * std::max(lambda.maxCoeff(), 1e-300)) {
+    t = target.eigenvectors() * target.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+        target.eigenvectors().transpose() * prior.eigenvectors() * lambda.cwiseSqrt().cwiseInverse().asDiagonal() *
+        prior.eigenvectors().transpose();
+  }
+  const Matrix6d p_pv = covariance_.topRightCorner<6, 6>();
+  covariance_.topLeftCorner<6, 6>() = 0.5 * (pose_covariance + pose_covariance.transpose());
+  covariance_.topRightCorner<6, 6>() = t * p_pv;
+  covariance_.bottomLeftCorner<6, 6>() = covariance_.topRightCorner<6, 6>().transpose();
+  return t;
 }
 
 void PoseVelocityFilter::Reseed(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance,

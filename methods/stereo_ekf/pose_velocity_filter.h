@@ -55,6 +55,14 @@ class PoseVelocityFilter {
   // Moves the pose to `cam_from_ref` (re-estimated with refined structure), keeping the
   // velocity and the covariance.
   void MovePose(const Rigid3d& cam_from_ref) { cam_from_ref_ = cam_from_ref; }
+  // Moves the pose to `cam_from_ref` with covariance `pose_covariance` (a smoother's marginal:
+  // the reference refinement's newest keyframe). The pose error is mapped by
+  //     T = pose_covariance^1/2 P_pp^-1/2   (symmetric square roots),
+  // e_pose <- T e_pose, so that P_pp becomes pose_covariance and P_vp its correlation with the
+  // velocity scaled alike (P stays positive semi-definite); a singular P_pp (no pose
+  // uncertainty yet) gives T = 0: P_pp = pose_covariance, uncorrelated. Returns T, which the
+  // caller applies to whatever else is correlated with the pose error.
+  Matrix6d MovePose(const Rigid3d& cam_from_ref, const Matrix6d& pose_covariance);
   // The current camera becomes the reference: the relative pose is exactly the identity.
   void StartNewReferencePair();
   // Q of the next predictions is multiplied by `scale_sq` (1 after Reset).

@@ -159,5 +159,40 @@ TEST(PoseVelocityFilter, VelocityStateForgetsThePoseUncertainty) {
   EXPECT_LT((f.PoseCovariance() - jl * p_vv * jl.transpose()).norm(), 1e-12 * p_vv.norm());
 }
 
+TEST(PoseVelocityFilter, MovedCovarianceReplacesThePoseBlockAndScalesItsCorrelation) {
+  const StereoEkfOptions o = Options(FilterState::kPoseVelocity);
+  PoseVelocityFilter f = Moving(o, SomeDelta(), 0.3);
+  f.Predict();
+  const Matrix12d before = f.covariance();
+  const Matrix6d p_pp = before.topLeftCorner<6, 6>();
+  ASSERT_GT((before.topRightCorner<6, 6>().norm()), 0.0);  // pose and velocity correlated
+  // A smoother's marginal: another positive-definite matrix, larger in some directions and
+  // smaller in others.
+  Matrix6d target = p_pp;
+  target(0, 0) *= 4.0;
+  target(5, 5) *= 0.25;
+  target(1, 3) = target(3, 1) = 0.3 * std::sqrt(target(1, 1) * target(3, 3));
+  const Rigid3d moved = ExpSE3(SomeDelta()) * f.cam_from_ref();
+  const Matrix6d t = f.MovePose(moved, target);
+  EXPECT_LT(LogSE3(f.cam_from_ref() * moved.Inverse()).norm(), 1e-15);
+  const Matrix12d after = f.covariance();
+  EXPECT_LT((after.topLeftCorner<6, 6>() - target).norm(), 1e-12 * target.norm());
+  EXPECT_LT((t * p_pp * t.transpose() - target).norm(), 1e-9 * target.norm());
+  EXPECT_LT((after.topRightCorner<6, 6>() - t * before.topRightCorner<6, 6>()).norm(), 1e-15);
+  EXPECT_TRUE((after.bottomRightCorner<6, 6>() == before.bottomRightCorner<6, 6>()));
+  EXPECT_TRUE((after.bottomLeftCorner<6, 6>() == after.topRightCorner<6, 6>().transpose()));
+  // Still a covariance: the map of the pose error keeps the joint matrix positive semi-definite.
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix12d>(after).eigenvalues().minCoeff(), -1e-12 * after.norm());
+
+  // With no pose uncertainty yet (just after a new reference pair), the pose error is replaced,
+  // not mapped: uncorrelated with the velocity.
+  PoseVelocityFilter fresh = Moving(o, SomeDelta(), 0.3);
+  fresh.StartNewReferencePair();
+  ASSERT_TRUE(fresh.PoseCovariance() == Matrix6d::Zero());
+  EXPECT_TRUE(fresh.MovePose(fresh.cam_from_ref(), target) == Matrix6d::Zero());
+  EXPECT_LT((fresh.PoseCovariance() - target).norm(), 1e-12 * target.norm());
+  EXPECT_TRUE((fresh.covariance().topRightCorner<6, 6>() == Matrix6d::Zero()));
+}
+
 }  // namespace
 }  // namespace slt

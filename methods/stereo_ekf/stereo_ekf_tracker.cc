@@ -99,6 +99,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   ref_from_world_ = Rigid3d();
   ref_from_world_covariance_.setZero();
   filter_.Reset(options_);
+  reported_widening_.setZero();
   reference_features_ = model_->SetReference(frame);
   if (consider_) consider_->Reset(*model_);
   wants_new_features_ = false;
@@ -114,7 +115,7 @@ void StereoEkfTracker::SetOutputPose(TrackerOutput* out) const {
   const Rigid3d& cam_from_ref = filter_.cam_from_ref();
   out->cam_from_world = cam_from_ref * ref_from_world_;
   const Matrix6d ad = Adjoint(cam_from_ref);
-  Matrix6d p = filter_.PoseCovariance();
+  Matrix6d p = filter_.PoseCovariance() + reported_widening_;
   p.noalias() += ad * ref_from_world_covariance_ * ad.transpose();
   out->covariance = 0.5 * (p + p.transpose());
   out->has_covariance = true;
@@ -480,8 +481,20 @@ void StereoEkfTracker::RefineStructure(FrameState* state) {
   Rigid3d refined;
   const bool move = model_->RefineStructure(filter_.cam_from_ref(), inliers_, &refined);
   if (consider_) consider_->Sync(*model_);
-  if (!move) return;
-  filter_.MovePose(refined);
+  Matrix6d covariance;
+  const FeatureModel::RefinedCovarianceUse use = model_->RefinedPoseCovariance(filter_.PoseCovariance(), &covariance);
+  if (use == FeatureModel::RefinedCovarianceUse::kReport) reported_widening_ = covariance - filter_.PoseCovariance();
+  if (!move && use != FeatureModel::RefinedCovarianceUse::kFilter) {
+    if (use == FeatureModel::RefinedCovarianceUse::kReport) SetOutputPose(&state->out);
+    return;
+  }
+  const Rigid3d cam_from_ref = move ? refined : filter_.cam_from_ref();
+  if (use == FeatureModel::RefinedCovarianceUse::kFilter) {
+    const Matrix6d t = filter_.MovePose(cam_from_ref, covariance);
+    if (consider_) consider_->TransformPose(t);
+  } else {
+    filter_.MovePose(cam_from_ref);
+  }
   SetOutputPose(&state->out);
 }
 
@@ -496,6 +509,7 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   ref_from_world_ = state->out.cam_from_world;
   ref_from_world_covariance_ = state->out.covariance;
   filter_.StartNewReferencePair();
+  reported_widening_.setZero();
   reference_features_ = model_->SetReference(frame);
   if (consider_) consider_->Reset(*model_);
   wants_new_features_ = false;

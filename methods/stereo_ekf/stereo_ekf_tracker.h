@@ -99,7 +99,9 @@ class StereoEkfTracker : public PoseTracker {
   void Update(FrameState* state);
   void Assess(FrameState* state);
   // Lets the model refine its reference structure (FeatureModel::RefineStructure) after a
-  // measured frame, and moves the pose where the model says.
+  // measured frame, moves the pose where the model says, and takes the pose covariance the
+  // model derives from its refinement (FeatureModel::RefinedPoseCovariance) into the filter or
+  // into the reported covariance only.
   void RefineStructure(FrameState* state);
   void NewReferencePair(const StereoFrame& frame, FrameState* state);
   // Pose and covariance of the output in the world: cam_from_world = cam_from_ref *
@@ -145,6 +147,9 @@ class StereoEkfTracker : public PoseTracker {
   double correction_ratio_mean_ = 1.0;
   int frames_since_start_ = 0;
   int reference_features_ = 0;
+  // Added to the reported pose covariance (FeatureModel::RefinedCovarianceUse::kReport) until
+  // the next solve or a new reference pair; zero otherwise.
+  Matrix6d reported_widening_ = Matrix6d::Zero();
   Rigid3d ref_from_world_;
   // Covariance of ref_from_world_ (the output covariance of the frame that became the
   // reference; zero for the first frame, which defines the world).

@@ -42,6 +42,12 @@ void StructureConsider::Predict(const Matrix12d& transition) {
   }
 }
 
+void StructureConsider::TransformPose(const Matrix6d& t) {
+  for (int s = 0; s < size(); ++s) {
+    if (correlated_[s]) cross_[s].topRows<6>() = t * cross_[s].topRows<6>();
+  }
+}
+
 bool StructureConsider::Linearize(const FeatureModel& model, const WeightedFeature& feature, int index,
                                   const Rigid3d& cam_from_ref, double scale) {
   if (whitened_jacobian_.size() <= static_cast<size_t>(index)) {

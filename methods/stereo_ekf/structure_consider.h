@@ -55,6 +55,9 @@ class StructureConsider {
   // Zeroes the cross-covariance of every structure whose estimate the model replaced.
   void Sync(const FeatureModel& model);
   void Predict(const Matrix12d& transition);
+  // The filter's pose error was mapped by e_pose <- t e_pose (PoseVelocityFilter::MovePose):
+  // the pose rows of every cross-covariance follow.
+  void TransformPose(const Matrix6d& t);
 
   // The whitened structure Jacobian G~_i = L_i^-1 scale G_i of feature `index` at `cam_from_ref`,
   // the pose its covariance factor L_i was computed at, so that G~ G~^T <= I (scale: the square

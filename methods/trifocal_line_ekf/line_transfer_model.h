@@ -122,6 +122,7 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
                 FeatureBlock* block) const override;
   bool RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
                        Rigid3d* refined_cam_from_ref) override;
+  RefinedCovarianceUse RefinedPoseCovariance(const Matrix6d& filter_covariance, Matrix6d* covariance) const override;
   bool DescribesStructure() const override { return options_.consider_structure; }
   int NumStructures() const override { return static_cast<int>(reference_lines_.size()); }
   int StructureOf(int index) const override { return matches_[index].reference; }
@@ -200,6 +201,9 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
 
   std::unique_ptr<ReferenceRefiner> refiner_;  // when refinement.enabled
   std::vector<ReferenceRefiner::Observation> keyframe_observations_;  // scratch
+  // Of the last RefineStructure: the refined newest keyframe's covariance (pose_covariance).
+  bool covariance_ready_ = false;
+  Matrix6d refined_covariance_ = Matrix6d::Zero();
   // The pose of the last frame given to RefineStructure (after its move), valid until the next
   // SetCurrent: a new reference pair taken at that frame carries the refined lines over with it.
   Rigid3d last_cam_from_ref_;

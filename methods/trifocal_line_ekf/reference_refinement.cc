@@ -52,6 +52,13 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
                  {{SegmentResidual::kTaylor, "taylor"}, {SegmentResidual::kEndpoints, "endpoints"}},
                  "segment residual: Taylor's integral or the endpoints' distances")
           .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
+          .Field("pose_covariance", &O::pose_covariance,
+                 {{PoseCovarianceSource::kFilter, "filter"}, {PoseCovarianceSource::kSolve, "solve"},
+                  {PoseCovarianceSource::kCover, "cover"}, {PoseCovarianceSource::kReportCover, "report_cover"}},
+                 "after a solve, the pose covariance: the filter's, the solve's marginal of the current frame, the filter's "
+                 "widened to cover it, or only the reported one widened so")
+          .Field("endpoint_sigma_px", &O::endpoint_sigma_px, AtLeast(0.0),
+                 "endpoint noise the solve weighs by, px (0 = the measurement's endpoint_sigma_px)")
           .Field("carry_over", &O::carry_over,
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
@@ -148,6 +155,7 @@ Eigen::Matrix<double, 6, 4> ReferenceRefiner::TangentBasis(int index) const {
 
 bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
                                            Rigid3d* newest_cam_from_ref) {
+  newest_covariance_valid_ = false;
   keyframes_.emplace_back();
   PoseToParameters(cam_from_ref, keyframes_.back().pose);
   keyframes_.back().observations = observations;
@@ -303,6 +311,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   // blocks are the lines' marginal covariances, cubic in the lines. The poses' form is kept
   // up to kMaxPoseSchurKeyframes keyframes so that earlier results reproduce to the bit.
   const int pose_count = pose_rows / 6;
+  const int newest_offset = offset_of_pose(pose_of(keyframes_.size() - 1));  // >= 0: newest_in
   const bool pose_schur = options_.min_triangulation_angle_deg > 0.0 || !many_poses;
   Eigen::MatrixXd a_blocks = Eigen::MatrixXd::Zero(line_rows, 4);  // A_i stacked
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(line_rows, pose_rows);
@@ -359,6 +368,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     poses_determined = pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive();
     if (poses_determined) {
       schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
+      newest_covariance_ = schur_inverse.block<6, 6>(newest_offset, newest_offset);
       for (size_t i = 0; i < lines_.size(); ++i) {
         const int l = line_offset[i];
         if (l < 0 || !ok[i]) continue;
@@ -381,7 +391,8 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       kept_b.middleRows<4>(4 * static_cast<Eigen::Index>(j)) = b.middleRows<4>(line_offset[kept[j]]);
     }
     std::vector<Eigen::Matrix4d> covariances;
-    poses_determined = LineMarginalCovariances(kept_a, kept_b, d_blocks, &covariances);
+    poses_determined = LineMarginalCovariances(kept_a, kept_b, d_blocks, &covariances, newest_offset / 6,
+                                               &newest_covariance_);
     if (poses_determined) {
       for (size_t j = 0; j < kept.size(); ++j) {
         LineState& l = lines_[static_cast<size_t>(kept[j])];
@@ -390,6 +401,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       }
     }
   }
+  newest_covariance_valid_ = poses_determined && newest_covariance_.allFinite();
   if (poses_determined) RefineTriangulatedLines(pose_of, offset_of_pose, schur_inverse, problem, &used);
   *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
   return true;

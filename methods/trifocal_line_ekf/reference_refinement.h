@@ -32,7 +32,9 @@
 // replaced by the lines' own covariance C_i (the line's block of the inverse of the problem's
 // Gauss-Newton information: marginalised over the keyframe poses, the correlations between
 // lines left out), and with move_pose moves the current pose to the solved newest keyframe's
-// pose (the current frame is that keyframe). Measured effect: docs/long_sequences.md.
+// pose (the current frame is that keyframe); with pose_covariance it also uses that keyframe's
+// marginal covariance (all the lines' uncertainty and correlations in it) for the filter's or
+// the reported pose covariance. Measured effect: docs/long_sequences.md.
 // Up to 64 keyframes the solve and the covariances eliminate the lines (a reduced system over
 // the poses); a larger window (max_keyframes, e.g. every 5th frame of a whole reference pair's
 // life) eliminates the poses instead (a reduced system over the lines,
@@ -63,6 +65,8 @@
 
 namespace slt {
 
+enum class PoseCovarianceSource { kFilter, kSolve, kCover, kReportCover };
+
 // Every field's key, range and doc are declared once, in ReferenceRefinementOptionsSchema().
 struct ReferenceRefinementOptions {
   bool enabled = false;
@@ -83,6 +87,22 @@ struct ReferenceRefinementOptions {
   // The current pose follows the refined newest keyframe. Off: with 32 keyframes the room
   // loop's maximum error is lower without it (docs/long_sequences.md).
   bool move_pose = false;
+  // After each solve, the filter's pose covariance (PoseVelocityFilter::MovePose, its
+  // correlations with the velocity and the lines mapped alike; with move_pose, about the refined
+  // pose): kFilter keeps the filter's own; kSolve takes the solve's marginal covariance of the
+  // newest keyframe, the current frame (the lines' uncertainty and all their correlations
+  // included, which the filter's per-line consider parameters leave out, and without counting
+  // twice what the refined lines and the filter's prior both learnt from the same frames);
+  // kCover widens the filter's to cover the solve's, P + (S - P)+ (the positive part of the
+  // difference): only the directions where the filter claims more than the window's data give;
+  // kReportCover leaves the filter's (and so every estimate) as it is and widens only the
+  // reported covariance so, by (S - P)+, until the next solve.
+  PoseCovarianceSource pose_covariance = PoseCovarianceSource::kFilter;
+  // The endpoint noise (sigma per coordinate, px) the solve weighs its residuals by; 0 = the
+  // measurement model's endpoint_sigma_px. The filter's fixed R may be set above the images'
+  // noise to cover what it does not model; the solve's covariance, which pose_covariance hands
+  // to the filter, is only as right as this sigma.
+  double endpoint_sigma_px = 0.0;
   // Lines the reference pair does not define (near an epipolar plane: horizontal lines of a
   // horizontal rig) are triangulated from the reference's left image and a keyframe's once
   // their back-projected planes meet at this angle, then refined like the others. 0 = never
@@ -143,6 +163,14 @@ class ReferenceRefiner {
   bool AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
                            Rigid3d* newest_cam_from_ref);
 
+  // The marginal covariance of the newest keyframe's pose in the last successful solve
+  // (PoseManifold's left tangent, relative to the reference pair: the lines' uncertainty and
+  // their correlations included). False when that solve left the poses undetermined.
+  bool NewestPoseCovariance(Matrix6d* covariance) const {
+    if (newest_covariance_valid_) *covariance = newest_covariance_;
+    return newest_covariance_valid_;
+  }
+
   bool Refined(int index) const { return lines_[index].refined; }
   // A triangulated line the last solve refined but the consistency gate held back: the filter
   // must stop measuring it.
@@ -198,6 +226,8 @@ class ReferenceRefiner {
   std::deque<Keyframe> keyframes_;
   int frames_since_keyframe_ = 0;
   int solves_ = 0;
+  Matrix6d newest_covariance_ = Matrix6d::Zero();
+  bool newest_covariance_valid_ = false;
   std::deque<TaylorSegmentCost> costs_;  // reused from solve to solve (addresses kept)
   struct ResidualRef {
     const double* pose;
