@@ -154,6 +154,19 @@ const OptionSchema<PlotSpec>& PlotSchema() {
   return schema;
 }
 
+// Trial metric names at `key` ("time_us": time_mean_us); an unknown one fails with the list.
+void ReadMetricNames(JsonReader& r, const std::string& key, std::vector<std::string>* names) {
+  r.Get(key, names);
+  for (size_t i = 0; i < names->size(); ++i) {
+    std::string& metric = (*names)[i];
+    if (metric == "time_us") metric = TrialMetricName(kTimeMeanUs);
+    if (TrialMetricFromName(metric) >= 0) continue;
+    std::string known;
+    for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
+    r.Fail(IndexedKey(key, i), "unknown metric '" + metric + "' (known:" + known + ")");
+  }
+}
+
 const OptionSchema<OrderingCheck>& OrderingSchema() {
   using O = OrderingCheck;
   static const OptionSchema<O> schema =
@@ -162,14 +175,10 @@ const OptionSchema<OrderingCheck>& OrderingSchema() {
           .Field("worse", &O::worse, {}, "id of the method with the higher errors")
           .Field("at", &O::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)")
           .Custom(
-              "metrics", [](JsonReader& r, O* o) { r.Get("metrics", &o->metrics); },
+              "metrics", [](JsonReader& r, O* o) { ReadMetricNames(r, "metrics", &o->metrics); },
               [](const O& o) { return nlohmann::json(o.metrics); }, "metric names",
-              "trial metrics compared (means over the trials)", [](const O& o) {
-                for (const std::string& m : o.metrics) {
-                  if (TrialMetricFromName(m) < 0) return "unknown metric '" + m + "'";
-                }
-                return o.metrics.empty() ? std::string("at least one metric") : std::string();
-              });
+              "trial metrics compared (means over the trials)",
+              [](const O& o) { return o.metrics.empty() ? "at least one metric" : ""; });
   return schema;
 }
 
@@ -179,15 +188,12 @@ const OptionSchema<BoundCheck>& BoundSchema() {
       OptionSchema<B>()
           .Field("method", &B::method, {}, "id of the method bounded")
           .Field("metric", &B::metric, {}, "a trial metric (summary.csv's columns without _mean)")
-          .Field("min", &B::min, AnyNumber(), "lowest mean allowed")
-          .Field("max", &B::max, AnyNumber(), "highest mean allowed (1e9: none)")
+          .Field("max", &B::max, AnyNumber(), "highest mean allowed")
           .Field("percent_of_path", &B::percent_of_path, "bound 100 mean(metric) / mean(path_length_m) instead")
           .Field("at", &B::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)")
-          .Check("metric",
-                 [](const B& b) {
-                   return TrialMetricFromName(b.metric) < 0 ? "unknown metric '" + b.metric + "'" : std::string();
-                 })
-          .Check("max", [](const B& b) { return b.max < b.min ? "must not be below min" : ""; });
+          .Check("metric", [](const B& b) {
+            return TrialMetricFromName(b.metric) < 0 ? "unknown metric '" + b.metric + "'" : std::string();
+          });
   return schema;
 }
 
@@ -265,18 +271,7 @@ const OptionSchema<ExperimentConfig>& ExperimentSchema() {
           .Field("per_frame_curves", &C::per_frame_curves, "write per-frame error curves (Fig. 6)")
           .Field("save_trajectories", &C::save_trajectories, AtLeast(0), "trials 0 .. n-1 write TUM trajectories")
           .Custom(
-              "table_metrics",
-              [](JsonReader& r, C* c) {
-                r.Get("table_metrics", &c->table_metrics);
-                for (size_t i = 0; i < c->table_metrics.size(); ++i) {
-                  std::string& metric = c->table_metrics[i];
-                  if (metric == "time_us") metric = TrialMetricName(kTimeMeanUs);
-                  if (TrialMetricFromName(metric) >= 0) continue;
-                  std::string known;
-                  for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
-                  r.Fail(IndexedKey("table_metrics", i), "unknown metric '" + metric + "' (known:" + known + ")");
-                }
-              },
+              "table_metrics", [](JsonReader& r, C* c) { ReadMetricNames(r, "table_metrics", &c->table_metrics); },
               [](const C& c) { return nlohmann::json(c.table_metrics); }, "metric names", "summary table columns")
           .Array("plots", &C::plots, PlotSchema(), "PNGs drawn (default: follow the sweep and the flags)")
           .Array("expect_better", &C::expect_better, OrderingSchema(), "expected orderings, as pairs")
@@ -332,8 +327,13 @@ void CheckPlot(const ExperimentConfig& c, const PlotSpec& plot, const std::strin
   }
 }
 
-// The sweep-point selection `at` of an ordering or a bound: each key a swept parameter, each value one of its values.
-void CheckAt(const ExperimentConfig& c, const nlohmann::json& at, const std::string& where, const std::string& key) {
+// An ordering's or a bound's methods (field -> id) are methods of the config, and its `at`
+// selects values of swept parameters.
+void CheckExpectation(const ExperimentConfig& c, const std::vector<std::pair<const char*, std::string>>& methods,
+                      const nlohmann::json& at, const std::string& where, const std::string& key) {
+  for (const auto& [field, id] : methods) {
+    if (MethodIndex(c, id) < 0) ThrowOptionError(where, key, field, "'" + id + "' is not the id of a method of this config");
+  }
   for (const auto& [parameter, value] : at.items()) {
     bool found = false;
     for (const SweepAxis& a : c.sweep) {
@@ -341,20 +341,6 @@ void CheckAt(const ExperimentConfig& c, const nlohmann::json& at, const std::str
     }
     if (!found) ThrowOptionError(where, key, "at", parameter + " = " + value.dump() + " is not a value of a swept parameter");
   }
-}
-
-void CheckOrdering(const ExperimentConfig& c, const OrderingCheck& o, const std::string& where, const std::string& key) {
-  for (const auto& [side, id] : {std::pair<const char*, std::string>{"better", o.better}, {"worse", o.worse}}) {
-    if (MethodIndex(c, id) < 0) ThrowOptionError(where, key, side, "'" + id + "' is not the id of a method of this config");
-  }
-  CheckAt(c, o.at, where, key);
-}
-
-void CheckBound(const ExperimentConfig& c, const BoundCheck& b, const std::string& where, const std::string& key) {
-  if (MethodIndex(c, b.method) < 0) {
-    ThrowOptionError(where, key, "method", "'" + b.method + "' is not the id of a method of this config");
-  }
-  CheckAt(c, b.at, where, key);
 }
 
 // The simulation of a sweep point: the base JSON with the point's values set, read and checked. Errors read "<where>: key 'simulation.<key>': <reason>", with
@@ -425,8 +411,14 @@ ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::st
   }
   const size_t repeat = FirstRepeat(c.plots, [](const PlotSpec& p) { return p.file; });
   if (repeat < c.plots.size()) ThrowOptionError(where, IndexedKey("plots", repeat), "file", "used twice");
-  for (size_t i = 0; i < c.expect_better.size(); ++i) CheckOrdering(c, c.expect_better[i], where, IndexedKey("expect_better", i));
-  for (size_t i = 0; i < c.expect_bounds.size(); ++i) CheckBound(c, c.expect_bounds[i], where, IndexedKey("expect_bounds", i));
+  for (size_t i = 0; i < c.expect_better.size(); ++i) {
+    const OrderingCheck& o = c.expect_better[i];
+    CheckExpectation(c, {{"better", o.better}, {"worse", o.worse}}, o.at, where, IndexedKey("expect_better", i));
+  }
+  for (size_t i = 0; i < c.expect_bounds.size(); ++i) {
+    const BoundCheck& b = c.expect_bounds[i];
+    CheckExpectation(c, {{"method", b.method}}, b.at, where, IndexedKey("expect_bounds", i));
+  }
 
   if (!c.datasets.empty()) {
     // Frame counts are known when the datasets are opened; errors are read at the last frame.

@@ -103,15 +103,12 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
                 .find("key 'expect_better[0].at'"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "yu_point_ekf"}, {"worse", "trifocal_line_ekf"}, {"metrics", {"ate"}}}}}})
-                .find("key 'expect_better[0].metrics': unknown metric 'ate'"),
+                .find("key 'expect_better[0].metrics[0]': unknown metric 'ate'"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "nobody"}, {"metric", "nees"}}}}}).find("key 'expect_bounds[0].method'"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "speed"}}}}})
                 .find("key 'expect_bounds[0].metric': unknown metric 'speed'"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"min", 4}, {"max", 3}}}}})
-                .find("key 'expect_bounds[0].max': must not be below min"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"at", {{"frames", 3}}}}}}})
                 .find("key 'expect_bounds[0].at'"),
@@ -339,7 +336,9 @@ TEST(ExperimentConfig, EveryConfigLoadsAndEveryCommittedResolvedConfigRoundTrips
       // rewrite reads back to itself.
       ExpectWrittenKeptIn(written, rewritten, path);
       for (const auto& [key, value] : rewritten.items()) {
-        if (!written.contains(key)) EXPECT_EQ(value, defaults.at(key)) << path << " " << key;
+        if (!written.contains(key)) {
+          EXPECT_EQ(value, defaults.at(key)) << path << " " << key;
+        }
       }
       EXPECT_EQ(ExperimentConfigToJson(ExperimentConfigFromJson(rewritten, path)), rewritten) << path;
       ++resolved_files;

@@ -7,8 +7,6 @@
 namespace slt {
 namespace {
 
-std::string Num(double v) { return StringPrintf("%.4g", v); }
-
 // Whether sweep point `point` has the values `at` asks for (empty: every point).
 bool Selected(const ExperimentConfig& config, const nlohmann::json& at, const SweepPoint& point) {
   for (size_t a = 0; a < config.sweep.size(); ++a) {
@@ -20,63 +18,51 @@ bool Selected(const ExperimentConfig& config, const nlohmann::json& at, const Sw
 
 }  // namespace
 
+std::string Num(double v) { return StringPrintf("%.4g", v); }
+
+void Record(bool pass, const std::string& line, const std::string& failure, RegressionReport* report) {
+  report->table += std::string(pass ? "  ok    " : "  FAIL  ") + line + "\n";
+  if (!pass) report->failures.push_back(failure);
+}
+
 RegressionReport CheckExpectations(const ExperimentConfig& config, const std::vector<SummaryRow>& rows) {
   RegressionReport report;
   const std::vector<SweepPoint> points = ExpandSweep(config.sweep);
-  auto row_of = [&](const std::string& id, size_t point) -> const SummaryRow* {
+  // The row of method `id` at point p, or a failure.
+  auto row_of = [&](const std::string& id, size_t p) -> const SummaryRow* {
     for (const SummaryRow& row : rows) {
-      if (row.point == point && config.methods.at(row.method).Id() == id) return &row;
+      if (row.point == p && config.methods.at(row.method).Id() == id) return &row;
     }
+    report.failures.push_back("'" + id + "' has no result at " + PointText(config, points[p]));
     return nullptr;
   };
-  for (const OrderingCheck& pair : config.expect_better) {
-    for (size_t p = 0; p < points.size(); ++p) {
+  for (size_t p = 0; p < points.size(); ++p) {
+    const std::string at = PointText(config, points[p]);
+    for (const OrderingCheck& pair : config.expect_better) {
       if (!Selected(config, pair.at, points[p])) continue;
-      const std::string at = PointText(config, points[p]);
       const SummaryRow* better = row_of(pair.better, p);
       const SummaryRow* worse = row_of(pair.worse, p);
-      if (better == nullptr || worse == nullptr) {
-        report.failures.push_back("'" + (better ? pair.worse : pair.better) + "' has no result at " + at);
-        continue;
-      }
-      for (const std::string& name : pair.metrics) {
-        const int metric = TrialMetricFromName(name);
+      for (size_t m = 0; better != nullptr && worse != nullptr && m < pair.metrics.size(); ++m) {
+        const int metric = TrialMetricFromName(pair.metrics[m]);
         const double mine = better->metrics[metric].mean, theirs = worse->metrics[metric].mean;
-        const bool pass = std::isfinite(mine) && (!std::isfinite(theirs) || mine <= theirs);
-        report.table += std::string(pass ? "  ok    " : "  FAIL  ") + "'" + pair.better + "' " + TrialMetricName(metric) +
-                        " mean " + Num(mine) + " vs '" + pair.worse + "' " + Num(theirs) + " at " + at + "\n";
-        if (!pass) {
-          report.failures.push_back("the expected ordering is lost at " + at + ": '" + pair.worse + "' has a lower mean " +
-                                    TrialMetricName(metric) + " (" + Num(theirs) + ") than '" + pair.better + "' (" +
-                                    Num(mine) + ")");
-        }
+        Record(std::isfinite(mine) && (!std::isfinite(theirs) || mine <= theirs),
+               "'" + pair.better + "' " + pair.metrics[m] + " mean " + Num(mine) + " vs '" + pair.worse + "' " +
+                   Num(theirs) + " at " + at,
+               "the expected ordering is lost at " + at + ": '" + pair.worse + "' has a lower mean " + pair.metrics[m] +
+                   " (" + Num(theirs) + ") than '" + pair.better + "' (" + Num(mine) + ")",
+               &report);
       }
     }
-  }
-  for (const BoundCheck& bound : config.expect_bounds) {
-    const int metric = TrialMetricFromName(bound.metric);
-    for (size_t p = 0; p < points.size(); ++p) {
-      if (!Selected(config, bound.at, points[p])) continue;
-      const std::string at = PointText(config, points[p]);
-      const SummaryRow* row = row_of(bound.method, p);
-      if (row == nullptr) {
-        report.failures.push_back("'" + bound.method + "' has no result at " + at);
-        continue;
-      }
-      double value = row->metrics[metric].mean;
-      std::string what = bound.metric + " mean";
-      if (bound.percent_of_path) {
-        value *= 100.0 / row->metrics[kPathLengthM].mean;
-        what += " as % of the path";
-      }
-      const bool pass = std::isfinite(value) && value >= bound.min && value <= bound.max;
-      const std::string range = "[" + Num(bound.min) + ", " + (bound.max < 1e9 ? Num(bound.max) : "-") + "]";
-      report.table += std::string(pass ? "  ok    " : "  FAIL  ") + "'" + bound.method + "' " + what + " " + Num(value) +
-                      " in " + range + " at " + at + "\n";
-      if (!pass) {
-        report.failures.push_back("the expected bound is lost at " + at + ": '" + bound.method + "' " + what + " = " +
-                                  Num(value) + ", outside " + range);
-      }
+    for (const BoundCheck& bound : config.expect_bounds) {
+      const SummaryRow* row = Selected(config, bound.at, points[p]) ? row_of(bound.method, p) : nullptr;
+      if (row == nullptr) continue;
+      const double value = row->metrics[TrialMetricFromName(bound.metric)].mean *
+                           (bound.percent_of_path ? 100.0 / row->metrics[kPathLengthM].mean : 1.0);
+      const std::string what = "'" + bound.method + "' " + bound.metric + " mean" +
+                               (bound.percent_of_path ? " as % of the path" : "");
+      Record(std::isfinite(value) && value <= bound.max, what + " " + Num(value) + " <= " + Num(bound.max) + " at " + at,
+             "the expected bound is lost at " + at + ": " + what + " = " + Num(value) + ", above " + Num(bound.max),
+             &report);
     }
   }
   if (!config.expect_better.empty()) report.table += "  ordering (mean rotation error):\n" + OrderingText(config, rows);

@@ -22,6 +22,11 @@ struct RegressionReport {
 // mean rotation and translation error at the metrics frame; every bound of config.expect_bounds
 // at every point it selects holds (nothing to check when both are empty). The table lists each
 // comparison and, with orderings, the full ordering at every point.
+// A number of the reports ("%.4g"), and one comparison: a line of report->table, and its
+// failure when it does not hold.
+std::string Num(double v);
+void Record(bool pass, const std::string& line, const std::string& failure, RegressionReport* report);
+
 RegressionReport CheckExpectations(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
 
 }  // namespace slt

@@ -11,8 +11,6 @@
 namespace slt {
 namespace {
 
-std::string Num(double v) { return StringPrintf("%.4g", v); }
-
 constexpr double kRelative = 1.25;
 constexpr double kRotFloorDeg = 0.02;
 constexpr double kTransFloorM = 0.0005;
@@ -95,14 +93,11 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
       const double reference_value = ParseDouble(ref[reference.Column(column)]);
       const double current = row.metrics[c.metric].mean;
       const double limit = std::max(kRelative * reference_value, reference_value + c.floor);
-      const bool pass = std::isfinite(current) && (!std::isfinite(reference_value) || current <= limit);
-      report.table += (pass ? "  ok    " : "  FAIL  ") + at + "  " + column + " = " + Num(current) +
-                      "  (reference " + Num(reference_value) + ", limit " + Num(limit) + ")\n";
-      if (!pass) {
-        report.failures.push_back(at + ": " + column + " = " + Num(current) + " exceeds the limit " + Num(limit) +
-                                  " (reference " + Num(reference_value) + "; limit = max(" + Num(kRelative) +
-                                  " x reference, reference + " + Num(c.floor) + "))");
-      }
+      Record(std::isfinite(current) && (!std::isfinite(reference_value) || current <= limit),
+             at + "  " + column + " = " + Num(current) + "  (reference " + Num(reference_value) + ", limit " + Num(limit) + ")",
+             at + ": " + column + " = " + Num(current) + " exceeds the limit " + Num(limit) + " (reference " +
+                 Num(reference_value) + "; limit = max(" + Num(kRelative) + " x reference, reference + " + Num(c.floor) + "))",
+             &report);
     }
   }
   for (const std::string& id : no_reference) {

@@ -25,8 +25,7 @@
 namespace {
 
 // The expected orderings and bounds (config "expect_better", "expect_bounds"): a note on stderr
-// when one does not hold. Not
-// an error: experiments_regression_test is the check.
+// when one does not hold. Not an error: experiments_regression_test is the check.
 void ReportExpectation(const slt::ExperimentConfig& config, const std::vector<slt::TrialResult>& trials) {
   const slt::RegressionReport report = slt::CheckExpectations(config, slt::SummarizeTrials(config, trials));
   for (const std::string& f : report.failures) std::fprintf(stderr, "run_experiment: note: %s\n", f.c_str());
