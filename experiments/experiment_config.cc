@@ -154,18 +154,25 @@ const OptionSchema<PlotSpec>& PlotSchema() {
   return schema;
 }
 
+// "" for a trial metric's name, else "unknown metric '<name>' (known: ...)".
+std::string MetricNameError(const std::string& metric) {
+  if (TrialMetricFromName(metric) >= 0) return "";
+  std::string known;
+  for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
+  return "unknown metric '" + metric + "' (known:" + known + ")";
+}
+
 // Trial metric names at `key` ("time_us": time_mean_us); an unknown one fails with the list.
 void ReadMetricNames(JsonReader& r, const std::string& key, std::vector<std::string>* names) {
   r.Get(key, names);
   for (size_t i = 0; i < names->size(); ++i) {
-    std::string& metric = (*names)[i];
-    if (metric == "time_us") metric = TrialMetricName(kTimeMeanUs);
-    if (TrialMetricFromName(metric) >= 0) continue;
-    std::string known;
-    for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
-    r.Fail(IndexedKey(key, i), "unknown metric '" + metric + "' (known:" + known + ")");
+    if ((*names)[i] == "time_us") (*names)[i] = TrialMetricName(kTimeMeanUs);
+    const std::string error = MetricNameError((*names)[i]);
+    if (!error.empty()) r.Fail(IndexedKey(key, i), error);
   }
 }
+
+constexpr const char* kAtDoc = "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)";
 
 const OptionSchema<OrderingCheck>& OrderingSchema() {
   using O = OrderingCheck;
@@ -173,7 +180,7 @@ const OptionSchema<OrderingCheck>& OrderingSchema() {
       OptionSchema<O>()
           .Field("better", &O::better, {}, "id of the method with the lower errors")
           .Field("worse", &O::worse, {}, "id of the method with the higher errors")
-          .Field("at", &O::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)")
+          .Field("at", &O::at, kAtDoc)
           .Custom(
               "metrics", [](JsonReader& r, O* o) { ReadMetricNames(r, "metrics", &o->metrics); },
               [](const O& o) { return nlohmann::json(o.metrics); }, "metric names",
@@ -190,10 +197,8 @@ const OptionSchema<BoundCheck>& BoundSchema() {
           .Field("metric", &B::metric, {}, "a trial metric (summary.csv's columns without _mean)")
           .Field("max", &B::max, AnyNumber(), "highest mean allowed")
           .Field("percent_of_path", &B::percent_of_path, "bound 100 mean(metric) / mean(path_length_m) instead")
-          .Field("at", &B::at, "the sweep points checked: {\"<swept parameter>\": value} (empty: every point)")
-          .Check("metric", [](const B& b) {
-            return TrialMetricFromName(b.metric) < 0 ? "unknown metric '" + b.metric + "'" : std::string();
-          });
+          .Field("at", &B::at, kAtDoc)
+          .Check("metric", [](const B& b) { return MetricNameError(b.metric); });
   return schema;
 }
 

@@ -18,7 +18,7 @@ bool Selected(const ExperimentConfig& config, const nlohmann::json& at, const Sw
 
 }  // namespace
 
-std::string Num(double v) { return StringPrintf("%.4g", v); }
+std::string ReportNumber(double v) { return StringPrintf("%.4g", v); }
 
 void Record(bool pass, const std::string& line, const std::string& failure, RegressionReport* report) {
   report->table += std::string(pass ? "  ok    " : "  FAIL  ") + line + "\n";
@@ -46,10 +46,10 @@ RegressionReport CheckExpectations(const ExperimentConfig& config, const std::ve
         const int metric = TrialMetricFromName(pair.metrics[m]);
         const double mine = better->metrics[metric].mean, theirs = worse->metrics[metric].mean;
         Record(std::isfinite(mine) && (!std::isfinite(theirs) || mine <= theirs),
-               "'" + pair.better + "' " + pair.metrics[m] + " mean " + Num(mine) + " vs '" + pair.worse + "' " +
-                   Num(theirs) + " at " + at,
+               "'" + pair.better + "' " + pair.metrics[m] + " mean " + ReportNumber(mine) + " vs '" + pair.worse +
+                   "' " + ReportNumber(theirs) + " at " + at,
                "the expected ordering is lost at " + at + ": '" + pair.worse + "' has a lower mean " + pair.metrics[m] +
-                   " (" + Num(theirs) + ") than '" + pair.better + "' (" + Num(mine) + ")",
+                   " (" + ReportNumber(theirs) + ") than '" + pair.better + "' (" + ReportNumber(mine) + ")",
                &report);
       }
     }
@@ -60,8 +60,10 @@ RegressionReport CheckExpectations(const ExperimentConfig& config, const std::ve
                            (bound.percent_of_path ? 100.0 / row->metrics[kPathLengthM].mean : 1.0);
       const std::string what = "'" + bound.method + "' " + bound.metric + " mean" +
                                (bound.percent_of_path ? " as % of the path" : "");
-      Record(std::isfinite(value) && value <= bound.max, what + " " + Num(value) + " <= " + Num(bound.max) + " at " + at,
-             "the expected bound is lost at " + at + ": " + what + " = " + Num(value) + ", above " + Num(bound.max),
+      const std::string limit = ReportNumber(bound.max);
+      Record(std::isfinite(value) && value <= bound.max,
+             what + " " + ReportNumber(value) + " <= " + limit + " at " + at,
+             "the expected bound is lost at " + at + ": " + what + " = " + ReportNumber(value) + ", above " + limit,
              &report);
     }
   }

@@ -18,15 +18,16 @@ struct RegressionReport {
   bool ok() const { return failures.empty(); }
 };
 
-// Every pair of config.expect_better at every sweep point it selects: `better` has the lower
-// mean rotation and translation error at the metrics frame; every bound of config.expect_bounds
-// at every point it selects holds (nothing to check when both are empty). The table lists each
-// comparison and, with orderings, the full ordering at every point.
 // A number of the reports ("%.4g"), and one comparison: a line of report->table, and its
 // failure when it does not hold.
-std::string Num(double v);
+std::string ReportNumber(double v);
 void Record(bool pass, const std::string& line, const std::string& failure, RegressionReport* report);
 
+// Every pair of config.expect_better at every sweep point it selects: `better` has the lower
+// mean of each of the pair's metrics (by default the rotation and translation error at the
+// metrics frame); every bound of config.expect_bounds at every point it selects holds (nothing
+// to check when both are empty). The table lists each comparison and, with orderings, the full
+// ordering at every point.
 RegressionReport CheckExpectations(const ExperimentConfig& config, const std::vector<SummaryRow>& rows);
 
 }  // namespace slt

@@ -86,17 +86,20 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
     const double ref_finite = ParseDouble(ref[reference.Column("finite_trials")]);
     if (static_cast<double>(row.finite_trials) < ref_finite) {
       report.failures.push_back(at + ": " + std::to_string(row.finite_trials) + " trials with finite poses, reference " +
-                                Num(ref_finite));
+                                ReportNumber(ref_finite));
     }
     for (const auto& c : checked) {
       const std::string column = std::string(TrialMetricName(c.metric)) + "_mean";
       const double reference_value = ParseDouble(ref[reference.Column(column)]);
       const double current = row.metrics[c.metric].mean;
       const double limit = std::max(kRelative * reference_value, reference_value + c.floor);
+      const std::string values = column + " = " + ReportNumber(current);
       Record(std::isfinite(current) && (!std::isfinite(reference_value) || current <= limit),
-             at + "  " + column + " = " + Num(current) + "  (reference " + Num(reference_value) + ", limit " + Num(limit) + ")",
-             at + ": " + column + " = " + Num(current) + " exceeds the limit " + Num(limit) + " (reference " +
-                 Num(reference_value) + "; limit = max(" + Num(kRelative) + " x reference, reference + " + Num(c.floor) + "))",
+             at + "  " + values + "  (reference " + ReportNumber(reference_value) + ", limit " +
+                 ReportNumber(limit) + ")",
+             at + ": " + values + " exceeds the limit " + ReportNumber(limit) + " (reference " +
+                 ReportNumber(reference_value) + "; limit = max(" + ReportNumber(kRelative) +
+                 " x reference, reference + " + ReportNumber(c.floor) + "))",
              &report);
     }
   }

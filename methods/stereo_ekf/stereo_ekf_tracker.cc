@@ -483,19 +483,15 @@ void StereoEkfTracker::RefineStructure(FrameState* state) {
   if (consider_) consider_->Sync(*model_);
   Matrix6d covariance;
   const FeatureModel::RefinedCovarianceUse use = model_->RefinedPoseCovariance(filter_.PoseCovariance(), &covariance);
-  if (use == FeatureModel::RefinedCovarianceUse::kReport) reported_widening_ = covariance - filter_.PoseCovariance();
-  if (!move && use != FeatureModel::RefinedCovarianceUse::kFilter) {
-    if (use == FeatureModel::RefinedCovarianceUse::kReport) SetOutputPose(&state->out);
-    return;
-  }
   const Rigid3d cam_from_ref = move ? refined : filter_.cam_from_ref();
   if (use == FeatureModel::RefinedCovarianceUse::kFilter) {
     const Matrix6d t = filter_.MovePose(cam_from_ref, covariance);
     if (consider_) consider_->TransformPose(t);
-  } else {
+  } else if (move) {
     filter_.MovePose(cam_from_ref);
   }
-  SetOutputPose(&state->out);
+  if (use == FeatureModel::RefinedCovarianceUse::kReport) reported_widening_ = covariance - filter_.PoseCovariance();
+  if (move || use != FeatureModel::RefinedCovarianceUse::kNone) SetOutputPose(&state->out);
 }
 
 void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* state) {

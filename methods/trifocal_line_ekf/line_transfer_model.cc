@@ -469,7 +469,7 @@ void LineTransferModel::TakeRefinedLine(int index, const Eigen::Matrix<double, 6
 
 bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::vector<int>& used,
                                         Rigid3d* refined_cam_from_ref) {
-  covariance_ready_ = false;
+  solved_ = false;
   if (!refiner_) return false;
   last_cam_from_ref_ = cam_from_ref;
   last_pose_valid_ = true;
@@ -495,22 +495,22 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
     }
   }
   *refined_cam_from_ref = refined;
-  covariance_ready_ = options_.refinement.pose_covariance != PoseCovarianceSource::kFilter &&
-                      refiner_->NewestPoseCovariance(&refined_covariance_);
+  solved_ = true;
   if (options_.refinement.move_pose) last_cam_from_ref_ = refined;
   return options_.refinement.move_pose;
 }
 
 FeatureModel::RefinedCovarianceUse LineTransferModel::RefinedPoseCovariance(const Matrix6d& filter_covariance,
                                                                            Matrix6d* covariance) const {
-  if (!covariance_ready_) return RefinedCovarianceUse::kNone;
+  Matrix6d solved;
+  if (!solved_ || !refiner_->NewestPoseCovariance(&solved)) return RefinedCovarianceUse::kNone;
   const PoseCovarianceSource source = options_.refinement.pose_covariance;
   if (source == PoseCovarianceSource::kSolve) {
-    *covariance = refined_covariance_;
+    *covariance = solved;
     return RefinedCovarianceUse::kFilter;
   }
   // The filter's widened to cover the solve's: P + (S - P)+.
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> excess(refined_covariance_ - filter_covariance);
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> excess(solved - filter_covariance);
   *covariance = filter_covariance + excess.eigenvectors() * excess.eigenvalues().cwiseMax(0.0).asDiagonal() *
                                         excess.eigenvectors().transpose();
   return source == PoseCovarianceSource::kCover ? RefinedCovarianceUse::kFilter : RefinedCovarianceUse::kReport;

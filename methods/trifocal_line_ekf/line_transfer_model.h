@@ -201,9 +201,9 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
 
   std::unique_ptr<ReferenceRefiner> refiner_;  // when refinement.enabled
   std::vector<ReferenceRefiner::Observation> keyframe_observations_;  // scratch
-  // Of the last RefineStructure: the refined newest keyframe's covariance (pose_covariance).
-  bool covariance_ready_ = false;
-  Matrix6d refined_covariance_ = Matrix6d::Zero();
+  // The last RefineStructure solved (its newest keyframe is the current frame: the refiner's
+  // NewestPoseCovariance is this frame's).
+  bool solved_ = false;
   // The pose of the last frame given to RefineStructure (after its move), valid until the next
   // SetCurrent: a new reference pair taken at that frame carries the refined lines over with it.
   Rigid3d last_cam_from_ref_;

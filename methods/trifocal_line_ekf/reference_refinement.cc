@@ -311,6 +311,8 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   // blocks are the lines' marginal covariances, cubic in the lines. The poses' form is kept
   // up to kMaxPoseSchurKeyframes keyframes so that earlier results reproduce to the bit.
   const int pose_count = pose_rows / 6;
+  // The newest keyframe's marginal only when a pose covariance is taken from the solve.
+  const bool wants_newest = options_.pose_covariance != PoseCovarianceSource::kFilter;
   const int newest_offset = offset_of_pose(pose_of(keyframes_.size() - 1));  // >= 0: newest_in
   const bool pose_schur = options_.min_triangulation_angle_deg > 0.0 || !many_poses;
   Eigen::MatrixXd a_blocks = Eigen::MatrixXd::Zero(line_rows, 4);  // A_i stacked
@@ -368,7 +370,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     poses_determined = pose_rows > 0 && schur_ldlt.info() == Eigen::Success && schur_ldlt.isPositive();
     if (poses_determined) {
       schur_inverse = schur_ldlt.solve(Eigen::MatrixXd::Identity(pose_rows, pose_rows));
-      newest_covariance_ = schur_inverse.block<6, 6>(newest_offset, newest_offset);
+      if (wants_newest) newest_covariance_ = schur_inverse.block<6, 6>(newest_offset, newest_offset);
       for (size_t i = 0; i < lines_.size(); ++i) {
         const int l = line_offset[i];
         if (l < 0 || !ok[i]) continue;
@@ -392,7 +394,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
     std::vector<Eigen::Matrix4d> covariances;
     poses_determined = LineMarginalCovariances(kept_a, kept_b, d_blocks, &covariances, newest_offset / 6,
-                                               &newest_covariance_);
+                                               wants_newest ? &newest_covariance_ : nullptr);
     if (poses_determined) {
       for (size_t j = 0; j < kept.size(); ++j) {
         LineState& l = lines_[static_cast<size_t>(kept[j])];
@@ -401,7 +403,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
       }
     }
   }
-  newest_covariance_valid_ = poses_determined && newest_covariance_.allFinite();
+  newest_covariance_valid_ = wants_newest && poses_determined && newest_covariance_.allFinite();
   if (poses_determined) RefineTriangulatedLines(pose_of, offset_of_pose, schur_inverse, problem, &used);
   *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
   return true;

@@ -165,7 +165,8 @@ class ReferenceRefiner {
 
   // The marginal covariance of the newest keyframe's pose in the last successful solve
   // (PoseManifold's left tangent, relative to the reference pair: the lines' uncertainty and
-  // their correlations included). False when that solve left the poses undetermined.
+  // their correlations included). False when that solve left the poses undetermined, or when
+  // pose_covariance is kFilter (then it is not computed).
   bool NewestPoseCovariance(Matrix6d* covariance) const {
     if (newest_covariance_valid_) *covariance = newest_covariance_;
     return newest_covariance_valid_;

@@ -163,6 +163,7 @@ TEST(ReferenceRefinerTest, NewestKeyframeCovarianceDescribesItsErrorOverNoiseDra
   options.keyframe_interval = 1;
   options.segment_residual = SegmentResidual::kEndpoints;
   options.huber_sigma = 1e3;
+  options.pose_covariance = PoseCovarianceSource::kSolve;  // the marginal is computed only when used
   std::mt19937 rng(11);
   std::normal_distribution<double> pixel_noise(0.0, 1.0);
   auto noisy = [&](const Rigid3d& cam_from_ref, int i) {
