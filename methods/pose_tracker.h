@@ -90,12 +90,28 @@ inline bool UsableSegment(const Segment2d& segment) {
   return segment.allFinite() && SegmentLength(segment) >= kMinSegmentLengthPx;
 }
 
+// The policy every tracker shares on a frame without a usable measurement (status kLost): the
+// velocity of its constant-velocity prediction is multiplied by lost_velocity_decay on every
+// such frame; 1 = coast at constant velocity for ever, 0 = hold the last pose. Its one key is
+// declared here, flat among each tracker's own options (OptionSchema::Flat).
+struct LostFrameOptions {
+  double lost_velocity_decay = 0.5;
+};
+
+inline const OptionSchema<LostFrameOptions>& LostFrameOptionsSchema() {
+  static const OptionSchema<LostFrameOptions> schema = OptionSchema<LostFrameOptions>().Field(
+      "lost_velocity_decay", &LostFrameOptions::lost_velocity_decay, InRange(0.0, 1.0),
+      "velocity factor of the constant-velocity prediction per lost frame (1 = coast, 0 = hold)");
+  return schema;
+}
+
 // A lost frame's pose for the trackers that keep a per-frame twist of their last measured
-// motion (taylor_line_sfm, elqursh_three_line; the EKFs damp the velocity in their state):
-// the twist is multiplied by `decay` on every lost frame (0 holds the pose) and applied on the
-// left, cam_from_world <- exp(v) cam_from_world.
-inline Rigid3d CoastAtConstantVelocity(double decay, Vector6d* velocity, const Rigid3d& cam_from_world) {
-  *velocity *= decay;
+// motion (taylor_line_sfm, elqursh_three_line; the EKFs damp the velocity in their state,
+// PoseVelocityFilter::DampVelocity): the twist is multiplied by the decay on every lost frame
+// and applied on the left, cam_from_world <- exp(v) cam_from_world.
+inline Rigid3d CoastAtConstantVelocity(const LostFrameOptions& lost, Vector6d* velocity,
+                                       const Rigid3d& cam_from_world) {
+  *velocity *= lost.lost_velocity_decay;
   return ExpSE3(*velocity) * cam_from_world;
 }
 

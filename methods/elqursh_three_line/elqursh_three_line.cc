@@ -11,7 +11,6 @@
 #include "methods/elqursh_three_line/candidate_triplets.h"
 #include "methods/elqursh_three_line/three_line_solver.h"
 #include "methods/stereo_ekf/least_squares.h"
-#include "methods/trifocal_line_ekf/line_transfer_model.h"
 #include "optim/ransac.h"
 
 namespace slt {
@@ -140,7 +139,7 @@ LineTransferOptions MeasurementOptions(const ElqurshThreeLineOptions& o) {
   LineTransferOptions m;
   m.direction = TransferDirection::kReferenceToCurrent;
   m.residual = LineResidual::kEndpointDistance;
-  m.min_epipolar_angle_deg = o.min_epipolar_angle_deg;
+  m.epipolar = o.epipolar;
   return m;
 }
 
@@ -292,7 +291,7 @@ TrackerOutput ElqurshThreeLineTracker::Track(const StereoFrame& frame) {
                  : candidates_.empty()              ? StatusReason::kUnconstrained
                                                     : StatusReason::kFewAgree;
     ++lost_frames_;
-    cam_from_world_ = CoastAtConstantVelocity(options_.lost_velocity_decay, &velocity_, cam_from_world_);
+    cam_from_world_ = CoastAtConstantVelocity(options_.lost, &velocity_, cam_from_world_);
     const bool has_lines = model_.CurrentStereoFeatures() >= options_.min_inliers;
     if (has_lines && (out.reason != StatusReason::kFewAgree || lost_frames_ > options_.max_lost_frames)) {
       SetReference(frame, cam_from_world_);
@@ -336,10 +335,8 @@ const OptionSchema<ElqurshThreeLineOptions>& ElqurshThreeLineOptionsSchema() {
                  "smallest consensus accepted (fraction of the measurable lines)")
           .Field("max_lost_frames", &O::max_lost_frames, AtLeast(0).Note("0 = always the previous frame"),
                  "lost frames against one reference before the current frame replaces it")
-          .Field("lost_velocity_decay", &O::lost_velocity_decay, InRange(0.0, 1.0),
-                 "velocity factor of the constant-velocity prediction per lost frame (1 = coast, 0 = hold)")
-          .Field("min_epipolar_angle_deg", &O::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
-                 "lines this close to the epipolar direction are not used");
+          .Flat(&O::lost, LostFrameOptionsSchema())
+          .Flat(&O::epipolar, EpipolarLineOptionsSchema());
   return schema;
 }
 

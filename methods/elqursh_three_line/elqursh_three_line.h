@@ -39,6 +39,7 @@
 
 #include "common/options.h"
 #include "methods/pose_tracker.h"
+#include "methods/trifocal_line_ekf/line_transfer_model.h"
 #include "optim/ransac.h"
 
 namespace slt {
@@ -75,13 +76,10 @@ struct ElqurshThreeLineOptions {
   // paper's rule: always the previous frame).
   int max_lost_frames = 10;
   // A lost frame's pose is the constant-velocity prediction from the last measured
-  // frame-to-frame motion, its velocity multiplied by this factor on every lost frame (the
-  // trackers' common policy, methods/stereo_ekf and taylor_line_sfm); 1 = coast at constant
-  // velocity, 0 = hold the last pose.
-  double lost_velocity_decay = 0.5;
-  // Lines: stereo pairs within this angle of the epipolar direction do not define a 3-D line
-  // and are not used (LineTransferOptions).
-  double min_epipolar_angle_deg = 3.0;
+  // frame-to-frame motion (the trackers' common policy, LostFrameOptions).
+  LostFrameOptions lost;
+  // Lines the measurement model (LineTransferModel) can use.
+  EpipolarLineOptions epipolar;
 
   // Throws ConfigError "<where>: key '<field>': ...".
   void Check(const std::string& where = "elqursh_three_line options") const;

@@ -33,8 +33,7 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
           .Field("robust_start_frames", &O::robust_start_frames, AtLeast(0), "frames after the start seeded by RANSAC")
           .Flat(&O::ransac, RansacOptionsSchema())
           .Field("min_consensus", &O::min_consensus, AtLeast(2), "features a RANSAC solve needs to count")
-          .Field("lost_velocity_decay", &O::lost_velocity_decay, InRange(0.0, 1.0),
-                 "velocity factor per frame without update (1 = coast)")
+          .Flat(&O::lost, LostFrameOptionsSchema())
           .Field("min_features", &O::min_features, AtLeast(2).Note("two features over-determine the pose"),
                  "new reference pair below this many remaining features (the paper's k_c)")
           .Field("min_feature_fraction", &O::min_feature_fraction, InRange(0.0, 1.0),
@@ -59,7 +58,7 @@ void StereoEkfOptions::Check(const std::string& where, const std::string& path) 
 void DisableRobustness(StereoEkfOptions* o) {
   o->robust = false;
   o->adaptive_noise = false;
-  o->lost_velocity_decay = 1.0;
+  o->lost.lost_velocity_decay = 1.0;
 }
 
 void ApplyPaperPreset(StereoEkfOptions* o) {

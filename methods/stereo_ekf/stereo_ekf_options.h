@@ -10,6 +10,7 @@
 #include "common/chi_square.h"  // ChiSquareQuantile, for the gate
 #include "common/json_reader.h"
 #include "common/options.h"
+#include "methods/pose_tracker.h"
 #include "optim/ransac.h"
 
 namespace slt {
@@ -76,9 +77,9 @@ struct StereoEkfOptions {
   // measurable): any two features agree with the pose fitted to them, so a consensus of two out
   // of many confirms nothing.
   int min_consensus = 3;
-  // On every frame without a usable update the velocity is pulled toward zero by this factor
-  // (PoseVelocityFilter::DampVelocity); 1 = coast at constant velocity for ever.
-  double lost_velocity_decay = 0.5;
+  // On every frame without a usable update the velocity is pulled toward zero
+  // (PoseVelocityFilter::DampVelocity; the trackers' common policy).
+  LostFrameOptions lost;
 
   // New reference pair (Sec. 3.3, the paper's feature replacement): when fewer than min_features
   // (the paper's k_c) features of the reference remain, or fewer than min_feature_fraction of

@@ -85,7 +85,7 @@ TEST(StereoEkfOptions, PaperPresetIsThePapersFilter) {
   EXPECT_FALSE(o.robust);
   EXPECT_FALSE(o.adaptive_noise);
   EXPECT_EQ(o.count_features, FeatureCount::kGated);
-  EXPECT_EQ(o.lost_velocity_decay, 1.0);  // the paper keeps predicting at constant velocity
+  EXPECT_EQ(o.lost.lost_velocity_decay, 1.0);  // the paper keeps predicting at constant velocity
   EXPECT_NO_THROW(o.Check());
 }
 

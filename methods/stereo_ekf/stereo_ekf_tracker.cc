@@ -424,7 +424,7 @@ void StereoEkfTracker::Assess(FrameState* state) {
     }
     healthy_ = false;
     state->used = 0;
-    filter_.DampVelocity(options_.lost_velocity_decay);
+    filter_.DampVelocity(options_.lost.lost_velocity_decay);
     ++counters_.lost_frames;
     out.status = TrackingStatus::kLost;
     out.reason = state->valid < 2      ? StatusReason::kFewMeasurable

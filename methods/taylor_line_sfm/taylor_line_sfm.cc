@@ -70,7 +70,7 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
       ++counters_.degraded_frames;
     }
   } else {
-    out.cam_from_world = CoastAtConstantVelocity(options_.lost_velocity_decay, &velocity_, previous);
+    out.cam_from_world = CoastAtConstantVelocity(options_.lost, &velocity_, previous);
     window_.SetNewestPose(out.cam_from_world);
     out.status = TrackingStatus::kLost;
     out.reason = out.features_available < 2 ? StatusReason::kFewMeasurable : StatusReason::kNoUpdate;

@@ -28,8 +28,7 @@ const OptionSchema<TaylorLineSfmOptions>& TaylorLineSfmOptionsSchema() {
           .Field("gradient_tolerance", &O::gradient_tolerance, AtLeast(0.0), "Ceres: gradient norm to stop at")
           .Field("parameter_tolerance", &O::parameter_tolerance, AtLeast(0.0), "Ceres: relative step to stop at")
           .Field("threads", &O::threads, AtLeast(1), "Ceres threads (1 = deterministic)")
-          .Field("lost_velocity_decay", &O::lost_velocity_decay, InRange(0.0, 1.0),
-                 "velocity factor per lost frame (1 = coast)")
+          .Flat(&O::lost, LostFrameOptionsSchema())
           .Check("window_frames", [](const O& o) {
             return o.window_frames == 1 ? std::string("must be 0 (every frame) or >= 2 (the oldest frame of the window is held fixed)")
                                         : std::string();

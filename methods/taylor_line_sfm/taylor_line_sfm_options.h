@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/options.h"
+#include "methods/pose_tracker.h"
 
 namespace slt {
 
@@ -52,9 +53,8 @@ struct TaylorLineSfmOptions {
   double parameter_tolerance = 1e-8;
   int threads = 1;
 
-  // On every frame without a usable solve (status lost) the constant-velocity prediction's
-  // velocity is multiplied by this factor; 1 = coast at constant velocity for ever.
-  double lost_velocity_decay = 0.5;
+  // A frame without a usable solve (status lost): the trackers' common policy.
+  LostFrameOptions lost;
 
   // Throws ConfigError "<where>: key '<path>.<field>': ...".
   void Check(const std::string& where = "taylor_line_sfm options", const std::string& path = "") const;

@@ -16,6 +16,13 @@ constexpr double kCovarianceFloorRad = 1e-4;
 
 }  // namespace
 
+const OptionSchema<EpipolarLineOptions>& EpipolarLineOptionsSchema() {
+  static const OptionSchema<EpipolarLineOptions> schema = OptionSchema<EpipolarLineOptions>().Field(
+      "min_epipolar_angle_deg", &EpipolarLineOptions::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
+      "lines this close to the epipolar direction are not measured");
+  return schema;
+}
+
 const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
   using O = LineTransferOptions;
   static const OptionSchema<O> schema =
@@ -33,8 +40,7 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
           .Field("covariance_floor_px", &O::covariance_floor_px, Positive(), "floor added to a propagated R (px)")
           .Field("fixed_sigma_px", &O::fixed_sigma_px, Positive(), "fixed R: distances and lambda (px)")
           .Field("fixed_sigma_rad", &O::fixed_sigma_rad, Positive(), "fixed R: theta (rad)")
-          .Field("min_epipolar_angle_deg", &O::min_epipolar_angle_deg, InRange(0.0, 90.0, "[)"),
-                 "lines this close to the epipolar direction are not measured")
+          .Flat(&O::epipolar, EpipolarLineOptionsSchema())
           .Field("min_epipolar_extent_px", &O::min_epipolar_extent_px, AtLeast(0.0),
                  "lines spanning fewer pixels across the epipolar lines are not measured (0 = off)")
           .Field("min_plane_angle_deg", &O::min_plane_angle_deg, InRange(0.0, 90.0, "[)"),
@@ -71,7 +77,7 @@ LineTransferModel::LineTransferModel(const LineTransferOptions& options) : optio
   paper_direction_ = options_.direction == TransferDirection::kCurrentToReference;
   distance_residual_ = options_.residual == LineResidual::kEndpointDistance;
   propagated_noise_ = options_.noise == MeasurementNoise::kPropagated;
-  min_epipolar_sine_ = std::sin(options_.min_epipolar_angle_deg * M_PI / 180.0);
+  min_epipolar_sine_ = std::sin(options_.epipolar.min_epipolar_angle_deg * M_PI / 180.0);
   min_plane_sine_ = std::sin(options_.min_plane_angle_deg * M_PI / 180.0);
   // Residual units per scalar: [px, px, px, px] or [rad, px, rad, px].
   Eigen::Vector4d fixed_sigma, floor;

@@ -40,6 +40,20 @@ namespace slt {
 enum class TransferDirection { kCurrentToReference, kReferenceToCurrent };
 enum class LineResidual { kEndpointDistance, kThetaLambda };
 
+// Which stereo pairs define a line to measure, for every tracker measuring with this model
+// (trifocal_line_ekf, elqursh_three_line; its key stands flat among theirs). Lines closer than
+// min_epipolar_angle_deg to the epipolar direction in the left image (at the segment's middle)
+// are not measured: a stereo pair does not define a line in an epipolar plane (horizontal lines
+// in a horizontal rig), and near it the transfer is too non-linear for the linearised
+// covariance. Checked on the reference pair, and on the current pair for the paper's direction,
+// whose transfers start from it. An image criterion, unlike the angle between the back-projected
+// planes, does not also reject distant lines.
+struct EpipolarLineOptions {
+  double min_epipolar_angle_deg = 3.0;
+};
+
+const OptionSchema<EpipolarLineOptions>& EpipolarLineOptionsSchema();
+
 // Every field's JSON key, range and one-line doc are declared once, in LineTransferOptionsSchema()
 // (line_transfer_model.cc); the comments here say why a field exists.
 struct LineTransferOptions {
@@ -58,13 +72,7 @@ struct LineTransferOptions {
   // spread 2.2 px there.
   double fixed_sigma_px = 2.0;
   double fixed_sigma_rad = 0.012;
-  // Lines closer than this to the epipolar direction in the left image (at the segment's middle)
-  // are not measured: a stereo pair does not define a line in an epipolar plane (horizontal
-  // lines in a horizontal rig), and near it the transfer is too non-linear for the linearised
-  // covariance. Checked on the reference pair, and on the current pair for the paper's
-  // direction, whose transfers start from it. An image criterion, unlike the angle between the
-  // back-projected planes, does not also reject distant lines.
-  double min_epipolar_angle_deg = 3.0;
+  EpipolarLineOptions epipolar;
   // Lines whose extent across the epipolar lines (segment length times the sine of that angle,
   // px) is below this are not measured either: a short segment's measured angle is mostly its
   // endpoint noise, so a line in an epipolar plane can pass the angle test and be triangulated

@@ -28,7 +28,7 @@ LineTransferOptions Options(const std::string& direction, const std::string& res
   LineTransferOptions o;
   JsonReader reader(nlohmann::json{{"direction", direction}, {"residual", residual}, {"noise", noise}}, "test");
   ReadLineTransferOptions(reader, &o);
-  o.min_epipolar_angle_deg = 0.0;
+  o.epipolar.min_epipolar_angle_deg = 0.0;
   return o;
 }
 
@@ -183,7 +183,7 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   TinyScene scene;
   scene.lines = {{{-0.1, 0.02, 0.5}, {0.1, 0.02, 0.5}}};  // horizontal: in the rig's epipolar plane
   LineTransferOptions o = Options("current_to_reference", "endpoint_distance");
-  o.min_epipolar_angle_deg = 1.0;
+  o.epipolar.min_epipolar_angle_deg = 1.0;
   LineTransferModel model(o);
   model.Reset(scene.rig);
   EXPECT_EQ(model.SetReference(scene.Frame(Rigid3d())), 0);  // not measurable
@@ -200,7 +200,7 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   tilted.SetCurrent(scene.Frame(SomeMotion()));
   EXPECT_TRUE(tilted.Evaluate(0, SomeMotion(), true, &block));
   EXPECT_LT(block.residual.norm(), 1e-6);
-  o.min_epipolar_angle_deg = 3.0;
+  o.epipolar.min_epipolar_angle_deg = 3.0;
   LineTransferModel strict(o);
   strict.Reset(scene.rig);
   EXPECT_EQ(strict.SetReference(scene.Frame(Rigid3d())), 0);
@@ -218,7 +218,7 @@ TEST(LineTransferModel, GatesShortLinesByTheirExtentAcrossEpipolarLines) {
   const double extent_px = std::abs(s(3) - s(1));  // a horizontal rig: rows
   ASSERT_GT(extent_px, 2.0);
   LineTransferOptions o = Options("reference_to_current", "endpoint_distance");
-  o.min_epipolar_angle_deg = 3.0;
+  o.epipolar.min_epipolar_angle_deg = 3.0;
   for (const double gate : {0.0, extent_px - 0.5, extent_px + 0.5}) {
     o.min_epipolar_extent_px = gate;
     LineTransferModel model(o);
@@ -284,7 +284,7 @@ TEST_P(OneTransferDegenerate, LineHorizontalInTheCurrentPairOnly) {
   TinyScene scene;
   scene.lines = {{ref_from_cam * Eigen::Vector3d(-0.1, 0.03, 0.5), ref_from_cam * Eigen::Vector3d(0.1, 0.03, 0.5)}};
   LineTransferOptions options = Options("current_to_reference", "theta_lambda", GetParam());
-  options.min_epipolar_angle_deg = 3.0;
+  options.epipolar.min_epipolar_angle_deg = 3.0;
   options.min_plane_angle_deg = 3.0;
   LineTransferModel model(options);
   model.Reset(scene.rig);
