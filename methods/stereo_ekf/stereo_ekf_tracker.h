@@ -176,15 +176,23 @@ class StereoEkfTracker : public PoseTracker {
   RobustSolveResult robust_result_;
 };
 
+// A named starting point of a stereo EKF tracker's options ("preset" in its JSON), applied
+// before the file's own values, which override it. "default" (the options' defaults) needs none.
+template <typename MeasurementOptions>
+struct StereoEkfPreset {
+  std::string name;
+  std::string doc;
+  void (*apply)(StereoEkfOptions* filter, MeasurementOptions* measurement);
+};
+
 // Creates a StereoEkfTracker from the options JSON every stereo EKF tracker takes:
-//   {"preset": "default" | "paper", "filter": {StereoEkfOptions}, "measurement": {model options}}
-// "paper" applies ApplyPaperPreset and `paper_measurement` before the file's own values, which
-// override them. `read_measurement(JsonReader&, MeasurementOptions*)` reads and checks the
-// model's part, `to_json` echoes it, `make_model(const MeasurementOptions&)` builds the model.
-template <typename MeasurementOptions, typename PaperMeasurement, typename ReadMeasurement, typename ToJson,
-          typename MakeModel>
+//   {"preset": "default" | <a name of presets>, "filter": {StereoEkfOptions},
+//    "measurement": {model options}}
+// `read_measurement(JsonReader&, MeasurementOptions*)` reads and checks the model's part,
+// `to_json` echoes it, `make_model(const MeasurementOptions&)` builds the model.
+template <typename MeasurementOptions, typename ReadMeasurement, typename ToJson, typename MakeModel>
 std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, const std::string& where,
-                                                    PaperMeasurement paper_measurement,
+                                                    const std::vector<StereoEkfPreset<MeasurementOptions>>& presets,
                                                     ReadMeasurement read_measurement, ToJson to_json,
                                                     MakeModel make_model) {
   JsonReader reader(json, where);
@@ -192,12 +200,15 @@ std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, 
   reader.Get("preset", &preset);
   StereoEkfOptions filter;
   MeasurementOptions measurement;
-  if (preset == "paper") {
-    ApplyPaperPreset(&filter);
-    paper_measurement(&measurement);
-  } else if (preset != "default") {
-    reader.Fail("preset", "must be \"default\" or \"paper\"");
+  std::string names = "\"default\"";
+  bool found = preset == "default";
+  for (const StereoEkfPreset<MeasurementOptions>& p : presets) {
+    names += ", \"" + p.name + "\"";
+    if (p.name != preset) continue;
+    p.apply(&filter, &measurement);
+    found = true;
   }
+  if (!found) reader.Fail("preset", "must be one of " + names);
   JsonReader filter_reader = reader.Child("filter");
   ReadStereoEkfOptions(filter_reader, &filter);
   filter_reader.RejectUnknownKeys();
@@ -211,9 +222,14 @@ std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, 
 // The listing of the options CreateStereoEkfTracker reads (TrackerInfo::list_options): "preset",
 // then "filter.*" and "measurement.*" with the default preset's values.
 template <typename MeasurementOptions>
-std::vector<OptionDoc> StereoEkfOptionDocs(const OptionSchema<MeasurementOptions>& measurement) {
-  std::vector<OptionDoc> docs = {{"preset", "default | paper", "\"default\"",
-                                  "\"paper\": the paper's filter and measurement, before the file's own values"}};
+std::vector<OptionDoc> StereoEkfOptionDocs(const std::vector<StereoEkfPreset<MeasurementOptions>>& presets,
+                                           const OptionSchema<MeasurementOptions>& measurement) {
+  std::string names = "default", doc = "the file's own values start from it";
+  for (const StereoEkfPreset<MeasurementOptions>& p : presets) {
+    names += " | " + p.name;
+    doc += "; \"" + p.name + "\": " + p.doc;
+  }
+  std::vector<OptionDoc> docs = {{"preset", names, "\"default\"", doc}};
   StereoEkfOptionsSchema().List(StereoEkfOptions(), "filter", &docs);
   measurement.List(MeasurementOptions(), "measurement", &docs);
   return docs;
@@ -222,8 +238,9 @@ std::vector<OptionDoc> StereoEkfOptionDocs(const OptionSchema<MeasurementOptions
 // The TrackerInfo of a stereo EKF tracker on the measurement model `Model` (constructed from its
 // MeasurementOptions): created by CreateStereoEkfTracker, listed by StereoEkfOptionDocs. What
 // the trifocal-line and the point-trifocal EKF register.
-template <typename Model, typename MeasurementOptions, typename PaperMeasurement>
-TrackerInfo StereoEkfTrackerInfo(std::string name, std::string description, PaperMeasurement paper_measurement,
+template <typename Model, typename MeasurementOptions>
+TrackerInfo StereoEkfTrackerInfo(std::string name, std::string description,
+                                 std::vector<StereoEkfPreset<MeasurementOptions>> presets,
                                  void (*read_measurement)(JsonReader&, MeasurementOptions*),
                                  nlohmann::json (*to_json)(const MeasurementOptions&),
                                  const OptionSchema<MeasurementOptions>& (*schema)()) {
@@ -232,10 +249,10 @@ TrackerInfo StereoEkfTrackerInfo(std::string name, std::string description, Pape
   info.description = std::move(description);
   info.create = [=](const nlohmann::json& json, const std::string& where) {
     return CreateStereoEkfTracker<MeasurementOptions>(
-        json, where, paper_measurement, read_measurement, to_json,
+        json, where, presets, read_measurement, to_json,
         [](const MeasurementOptions& m) { return std::make_unique<Model>(m); });
   };
-  info.list_options = [schema] { return StereoEkfOptionDocs(schema()); };
+  info.list_options = [schema, presets] { return StereoEkfOptionDocs(presets, schema()); };
   return info;
 }
 

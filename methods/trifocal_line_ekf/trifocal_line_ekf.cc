@@ -24,11 +24,37 @@ void PaperMeasurement(LineTransferOptions* m) {
   m->min_plane_angle_deg = 3.0;
 }
 
+void PaperPreset(StereoEkfOptions* filter, LineTransferOptions* m) {
+  ApplyPaperPreset(filter);
+  PaperMeasurement(m);
+}
+
+// Long runs in structured scenes (docs/long_sequences.md, issue 16): the reference lines refined
+// jointly with keyframes at least 5 frames and 5 mm apart, up to 300 (a reference pair's life on
+// the room loop), their remaining error as consider parameters of the filter, the process noise
+// adapted to the pose corrections with R fixed at a 1-px endpoint sigma, lines spanning under
+// 3 px across the epipolar lines left out. The setting of long_room_ci and of the rows named
+// "... dense keyframes" in the long-run results.
+void LongRunPreset(StereoEkfOptions* filter, LineTransferOptions* m) {
+  filter->adaptive_noise = false;
+  filter->adaptive_process_noise = true;
+  m->consider_structure = true;
+  m->endpoint_sigma_px = 1.0;
+  m->min_epipolar_extent_px = 3.0;
+  m->refinement.enabled = true;
+  m->refinement.keyframe_interval = 5;
+  m->refinement.keyframe_min_distance_m = 0.005;
+  m->refinement.max_keyframes = 300;
+}
+
 }  // namespace
 
 TrackerInfo TrifocalLineEkfInfo() {
-  return StereoEkfTrackerInfo<LineTransferModel>(
-      "trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)", PaperMeasurement,
+  return StereoEkfTrackerInfo<LineTransferModel, LineTransferOptions>(
+      "trifocal_line_ekf", "Trifocal-line EKF (Lee, Yu, Wong, Chang, Multimedia Systems 2015)",
+      {{"paper", "the paper's filter and measurement (Sec. 3-4)", PaperPreset},
+       {"long_run", "long runs in structured scenes: reference lines refined with dense keyframes "
+                    "(docs/long_sequences.md)", LongRunPreset}},
       ReadLineTransferOptions, LineTransferOptionsToJson, LineTransferOptionsSchema);
 }
 
