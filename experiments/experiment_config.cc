@@ -195,10 +195,16 @@ const OptionSchema<BoundCheck>& BoundSchema() {
       OptionSchema<B>()
           .Field("method", &B::method, {}, "id of the method bounded")
           .Field("metric", &B::metric, {}, "a trial metric (summary.csv's columns without _mean)")
-          .Field("max", &B::max, AnyNumber(), "highest mean allowed")
+          .Field("max", &B::max, AnyNumber(), "highest mean allowed (absent: none)")
+          .Field("min", &B::min, AnyNumber(), "lowest mean allowed (absent: none)")
           .Field("percent_of_path", &B::percent_of_path, "bound 100 mean(metric) / mean(path_length_m) instead")
           .Field("at", &B::at, kAtDoc)
-          .Check("metric", [](const B& b) { return MetricNameError(b.metric); });
+          .Check("metric", [](const B& b) { return MetricNameError(b.metric); })
+          .Check("max", [](const B& b) {
+            return b.max == BoundCheck().max && b.min == BoundCheck().min ? "give max, min or both"
+                   : b.min > b.max                                        ? "below min"
+                                                                          : "";
+          });
   return schema;
 }
 

@@ -105,13 +105,19 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(ErrorOf({{"expect_better", {{{"better", "yu_point_ekf"}, {"worse", "trifocal_line_ekf"}, {"metrics", {"ate"}}}}}})
                 .find("key 'expect_better[0].metrics[0]': unknown metric 'ate'"),
             std::string::npos);
-  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "nobody"}, {"metric", "nees"}}}}}).find("key 'expect_bounds[0].method'"),
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "nobody"}, {"metric", "nees"}, {"max", 8}}}}}).find("key 'expect_bounds[0].method'"),
             std::string::npos);
-  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "speed"}}}}})
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "speed"}, {"max", 8}}}}})
                 .find("key 'expect_bounds[0].metric': unknown metric 'speed'"),
             std::string::npos);
-  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"at", {{"frames", 3}}}}}}})
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"max", 8}, {"at", {{"frames", 3}}}}}}})
                 .find("key 'expect_bounds[0].at'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}}}}})
+                .find("key 'expect_bounds[0].max': give max, min or both"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"min", 4}, {"max", 3}}}}})
+                .find("key 'expect_bounds[0].max': below min"),
             std::string::npos);
   EXPECT_NE(ErrorOf({{"name", "a/b"}}).find("key 'name'"), std::string::npos);
 }

@@ -273,7 +273,7 @@ TEST(Regression, ExpectedBounds) {
   c.expect_bounds = {{id, "trans_err_m", 0.0035}};
   RegressionReport report = CheckExpectations(c, rows);
   ASSERT_EQ(report.failures.size(), 1u) << report.table;
-  EXPECT_NE(report.failures[0].find("bound is lost at noise.endpoint_px = 0: '" + id + "' trans_err_m mean = 0.004, above 0.0035"),
+  EXPECT_NE(report.failures[0].find("bound is lost at noise.endpoint_px = 0: '" + id + "' trans_err_m mean = 0.004, not <= 0.0035"),
             std::string::npos)
       << report.failures[0];
   EXPECT_NE(report.table.find("ok    '" + id + "' trans_err_m mean 0.003 <= 0.0035 at noise.endpoint_px = 1.5"),
@@ -298,6 +298,22 @@ TEST(Regression, ExpectedBounds) {
   report = CheckExpectations(c, rows);
   ASSERT_EQ(report.failures.size(), 2u) << report.table;
   EXPECT_NE(report.failures[0].find("ate_trans_m mean as % of the path"), std::string::npos) << report.failures[0];
+  // A lower bound, alone or with the upper one (a band).
+  c.expect_bounds = {{id, "trans_err_m"}};
+  c.expect_bounds[0].min = 0.0035;
+  report = CheckExpectations(c, rows);
+  ASSERT_EQ(report.failures.size(), 1u) << report.table;
+  EXPECT_NE(report.failures[0].find("at noise.endpoint_px = 1.5: '" + id + "' trans_err_m mean = 0.003, not >= 0.0035"),
+            std::string::npos)
+      << report.failures[0];
+  c.expect_bounds[0].max = 0.0039;
+  report = CheckExpectations(c, rows);
+  ASSERT_EQ(report.failures.size(), 2u) << report.table;
+  EXPECT_NE(report.failures[0].find("trans_err_m mean = 0.004, not in [0.0035, 0.0039]"), std::string::npos)
+      << report.failures[0];
+  c.expect_bounds[0].min = 0.0029;
+  c.expect_bounds[0].max = 0.0041;
+  EXPECT_TRUE(CheckExpectations(c, rows).ok()) << CheckExpectations(c, rows).table;
 }
 
 }  // namespace

@@ -109,8 +109,12 @@ class FeatureModel {
   // refinement's (its marginal of the current frame) and the filter's, `filter_covariance`
   // (both in the filter's left perturbation of cam_from_ref), and what it is for: kNone, nothing;
   // kFilter, the filter's pose covariance becomes it; kReport, the filter keeps its own and
-  // only the reported covariance is widened to it, by the difference, until the next solve.
-  enum class RefinedCovarianceUse { kNone, kFilter, kReport };
+  // only the reported covariance is widened to it, by the difference, until the next solve;
+  // kReferencePlacement, *covariance is the reference pair's placement relative to its
+  // structure (a left perturbation of the reference camera, in its frame): every pose measured
+  // against that structure inherits it, so it is added to the reported covariance as the
+  // reference pair's world covariance is, until the next solve or a new reference pair.
+  enum class RefinedCovarianceUse { kNone, kFilter, kReport, kReferencePlacement };
   virtual RefinedCovarianceUse RefinedPoseCovariance(const Matrix6d& /*filter_covariance*/,
                                                      Matrix6d* /*covariance*/) const {
     return RefinedCovarianceUse::kNone;

@@ -98,6 +98,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   correction_ratio_mean_ = 1.0;
   ref_from_world_ = Rigid3d();
   ref_from_world_covariance_.setZero();
+  reference_placement_covariance_.setZero();
   filter_.Reset(options_);
   reported_widening_.setZero();
   reference_features_ = model_->SetReference(frame);
@@ -116,7 +117,7 @@ void StereoEkfTracker::SetOutputPose(TrackerOutput* out) const {
   out->cam_from_world = cam_from_ref * ref_from_world_;
   const Matrix6d ad = Adjoint(cam_from_ref);
   Matrix6d p = filter_.PoseCovariance() + reported_widening_;
-  p.noalias() += ad * ref_from_world_covariance_ * ad.transpose();
+  p.noalias() += ad * (ref_from_world_covariance_ + reference_placement_covariance_) * ad.transpose();
   out->covariance = 0.5 * (p + p.transpose());
   out->has_covariance = true;
 }
@@ -491,6 +492,7 @@ void StereoEkfTracker::RefineStructure(FrameState* state) {
     filter_.MovePose(cam_from_ref);
   }
   if (use == FeatureModel::RefinedCovarianceUse::kReport) reported_widening_ = covariance - filter_.PoseCovariance();
+  if (use == FeatureModel::RefinedCovarianceUse::kReferencePlacement) reference_placement_covariance_ = covariance;
   if (move || use != FeatureModel::RefinedCovarianceUse::kNone) SetOutputPose(&state->out);
 }
 
@@ -504,6 +506,7 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = state->out.cam_from_world;
   ref_from_world_covariance_ = state->out.covariance;
+  reference_placement_covariance_.setZero();
   filter_.StartNewReferencePair();
   reported_widening_.setZero();
   reference_features_ = model_->SetReference(frame);

@@ -154,6 +154,10 @@ class StereoEkfTracker : public PoseTracker {
   // Covariance of ref_from_world_ (the output covariance of the frame that became the
   // reference; zero for the first frame, which defines the world).
   Matrix6d ref_from_world_covariance_ = Matrix6d::Zero();
+  // Covariance of the reference pair's placement relative to its structure
+  // (FeatureModel::RefinedCovarianceUse::kReferencePlacement), reported like
+  // ref_from_world_covariance_; zero otherwise.
+  Matrix6d reference_placement_covariance_ = Matrix6d::Zero();
   // This frame's measurement information H = J^T R^-1 J at the accepted update (set by
   // IteratedUpdate): the measurements constrain every direction of the pose when it is positive
   // definite.

@@ -508,9 +508,13 @@ bool LineTransferModel::RefineStructure(const Rigid3d& cam_from_ref, const std::
 
 FeatureModel::RefinedCovarianceUse LineTransferModel::RefinedPoseCovariance(const Matrix6d& filter_covariance,
                                                                            Matrix6d* covariance) const {
+  const PoseCovarianceSource source = options_.refinement.pose_covariance;
+  if (source == PoseCovarianceSource::kReportPlacement) {
+    return solved_ && refiner_->ReferencePlacementCovariance(covariance) ? RefinedCovarianceUse::kReferencePlacement
+                                                                         : RefinedCovarianceUse::kNone;
+  }
   Matrix6d solved;
   if (!solved_ || !refiner_->NewestPoseCovariance(&solved)) return RefinedCovarianceUse::kNone;
-  const PoseCovarianceSource source = options_.refinement.pose_covariance;
   if (source == PoseCovarianceSource::kSolve) {
     *covariance = solved;
     return RefinedCovarianceUse::kFilter;

@@ -54,9 +54,11 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
           .Field("move_pose", &O::move_pose, "the current pose follows the refined keyframe pose")
           .Field("pose_covariance", &O::pose_covariance,
                  {{PoseCovarianceSource::kFilter, "filter"}, {PoseCovarianceSource::kSolve, "solve"},
-                  {PoseCovarianceSource::kCover, "cover"}, {PoseCovarianceSource::kReportCover, "report_cover"}},
+                  {PoseCovarianceSource::kCover, "cover"}, {PoseCovarianceSource::kReportCover, "report_cover"},
+                  {PoseCovarianceSource::kReportPlacement, "report_placement"}},
                  "after a solve, the pose covariance: the filter's, the solve's marginal of the current frame, the filter's "
-                 "widened to cover it, or only the reported one widened so")
+                 "widened to cover it, only the reported one widened so, or the reported one with the reference "
+                 "pair's placement relative to its lines added")
           .Field("endpoint_sigma_px", &O::endpoint_sigma_px, AtLeast(0.0),
                  "endpoint noise the solve weighs by, px (0 = the measurement's endpoint_sigma_px)")
           .Field("carry_over", &O::carry_over,
@@ -156,6 +158,7 @@ Eigen::Matrix<double, 6, 4> ReferenceRefiner::TangentBasis(int index) const {
 bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
                                            Rigid3d* newest_cam_from_ref) {
   newest_covariance_valid_ = false;
+  placement_valid_ = false;
   keyframes_.emplace_back();
   PoseToParameters(cam_from_ref, keyframes_.back().pose);
   keyframes_.back().observations = observations;
@@ -312,7 +315,9 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   // up to kMaxPoseSchurKeyframes keyframes so that earlier results reproduce to the bit.
   const int pose_count = pose_rows / 6;
   // The newest keyframe's marginal only when a pose covariance is taken from the solve.
-  const bool wants_newest = options_.pose_covariance != PoseCovarianceSource::kFilter;
+  const bool wants_newest = options_.pose_covariance != PoseCovarianceSource::kFilter &&
+                            options_.pose_covariance != PoseCovarianceSource::kReportPlacement;
+  const bool wants_placement = options_.pose_covariance == PoseCovarianceSource::kReportPlacement;
   const int newest_offset = offset_of_pose(pose_of(keyframes_.size() - 1));  // >= 0: newest_in
   const bool pose_schur = options_.min_triangulation_angle_deg > 0.0 || !many_poses;
   Eigen::MatrixXd a_blocks = Eigen::MatrixXd::Zero(line_rows, 4);  // A_i stacked
@@ -322,6 +327,7 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
   Eigen::Matrix<double, 2, kPoseAmbientSize, Eigen::RowMajor> d_pose;
   Eigen::Matrix<double, 2, kLineAmbientSize, Eigen::RowMajor> d_line;
   Eigen::Matrix<double, kPoseAmbientSize, 6, Eigen::RowMajor> pose_plus;
+  Matrix6d reference_information = Matrix6d::Zero();
   for (size_t k = 0; k < residuals_.size(); ++k) {
     const int line = residuals_[k].line;
     const double* parameters[2] = {residuals_[k].pose, lines_[line].parameters};
@@ -331,9 +337,15 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     const int l = line_offset[line];
     a_blocks.block<4, 4>(l, 0).noalias() += j_line.transpose() * j_line;
     const int p = offset_of_pose(residuals_[k].pose);
-    if (p < 0) continue;
+    // The reference pair's block is held fixed; its information is the placement's.
+    const bool reference = p < 0 && wants_placement && residuals_[k].pose == reference_pose;
+    if (p < 0 && !reference) continue;
     pose_manifold_.PlusJacobian(residuals_[k].pose, pose_plus.data());
     const Eigen::Matrix<double, 2, 6> j_pose = d_pose * pose_plus;
+    if (reference) {
+      reference_information.noalias() += j_pose.transpose() * j_pose;
+      continue;
+    }
     d_blocks[static_cast<size_t>(p / 6)].noalias() += j_pose.transpose() * j_pose;
     b.block<4, 6>(l, p).noalias() += j_line.transpose() * j_pose;
   }
@@ -404,6 +416,13 @@ bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const st
     }
   }
   newest_covariance_valid_ = wants_newest && poses_determined && newest_covariance_.allFinite();
+  if (wants_placement) {
+    const Eigen::LDLT<Matrix6d> ldlt(reference_information);
+    if (reference_information.allFinite() && ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+      placement_covariance_ = ldlt.solve(Matrix6d::Identity());
+      placement_valid_ = placement_covariance_.allFinite() && placement_covariance_.diagonal().minCoeff() > 0.0;
+    }
+  }
   if (poses_determined) RefineTriangulatedLines(pose_of, offset_of_pose, schur_inverse, problem, &used);
   *newest_cam_from_ref = PoseFromParameters(keyframes_.back().pose);
   return true;

@@ -65,7 +65,7 @@
 
 namespace slt {
 
-enum class PoseCovarianceSource { kFilter, kSolve, kCover, kReportCover };
+enum class PoseCovarianceSource { kFilter, kSolve, kCover, kReportCover, kReportPlacement };
 
 // Every field's key, range and doc are declared once, in ReferenceRefinementOptionsSchema().
 struct ReferenceRefinementOptions {
@@ -96,7 +96,10 @@ struct ReferenceRefinementOptions {
   // kCover widens the filter's to cover the solve's, P + (S - P)+ (the positive part of the
   // difference): only the directions where the filter claims more than the window's data give;
   // kReportCover leaves the filter's (and so every estimate) as it is and widens only the
-  // reported covariance so, by (S - P)+, until the next solve.
+  // reported covariance so, by (S - P)+, until the next solve. kReportPlacement also leaves
+  // every estimate as it is and adds to the reported covariance the reference pair's placement
+  // relative to its lines (ReferencePlacementCovariance), which the filter's per-line consider
+  // parameters leave out once the refined lines replace the stereo ones.
   PoseCovarianceSource pose_covariance = PoseCovarianceSource::kFilter;
   // The endpoint noise (sigma per coordinate, px) the solve weighs its residuals by; 0 = the
   // measurement model's endpoint_sigma_px. The filter's fixed R may be set above the images'
@@ -172,6 +175,19 @@ class ReferenceRefiner {
     return newest_covariance_valid_;
   }
 
+  // The covariance of the reference pair's placement relative to its lines in the last
+  // successful solve: the inverse of the information its own segments give about its pose (the
+  // solve's gauge, held fixed; PoseManifold's left tangent). A rigid motion of the lines and the
+  // keyframes together changes no keyframe's residual, so only the reference pair's segments
+  // (and carried lines' priors, not counted here) determine it, however many keyframes the
+  // solve has: an error every pose measured against these lines keeps (docs/long_sequences.md).
+  // False when that information is not positive definite, or when pose_covariance is not
+  // kReportPlacement (then it is not computed).
+  bool ReferencePlacementCovariance(Matrix6d* covariance) const {
+    if (placement_valid_) *covariance = placement_covariance_;
+    return placement_valid_;
+  }
+
   bool Refined(int index) const { return lines_[index].refined; }
   // A triangulated line the last solve refined but the consistency gate held back: the filter
   // must stop measuring it.
@@ -229,6 +245,8 @@ class ReferenceRefiner {
   int solves_ = 0;
   Matrix6d newest_covariance_ = Matrix6d::Zero();
   bool newest_covariance_valid_ = false;
+  Matrix6d placement_covariance_ = Matrix6d::Zero();
+  bool placement_valid_ = false;
   std::deque<TaylorSegmentCost> costs_;  // reused from solve to solve (addresses kept)
   struct ResidualRef {
     const double* pose;

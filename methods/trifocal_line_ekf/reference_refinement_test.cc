@@ -151,50 +151,65 @@ Rigid3d AddFourKeyframes(const StereoRig& rig, double jitter_px, ReferenceRefine
   return newest;
 }
 
-TEST(ReferenceRefinerTest, NewestKeyframeCovarianceDescribesItsErrorOverNoiseDraws) {
-  // Endpoints with Gaussian noise of the endpoint sigma in every image (the reference pair's
-  // and four keyframes'), the endpoints' residual (exact for that noise), a Huber threshold out
-  // of reach: the reported marginal covariance of the newest keyframe's pose (the lines'
-  // uncertainty and correlations included) must describe the spread of its error. Mean NEES
-  // over 300 draws, 6 if consistent: 95 % of such means fall in [5.6, 6.4].
-  StereoRig rig;
+// The options of the noise-draw tests: the endpoints' residual (exact for Gaussian noise), a
+// Huber threshold out of reach, a keyframe every frame.
+ReferenceRefinementOptions NoiseDrawOptions(PoseCovarianceSource pose_covariance) {
   ReferenceRefinementOptions options;
   options.enabled = true;
   options.keyframe_interval = 1;
   options.segment_residual = SegmentResidual::kEndpoints;
   options.huber_sigma = 1e3;
-  options.pose_covariance = PoseCovarianceSource::kSolve;  // the marginal is computed only when used
-  std::mt19937 rng(11);
+  options.pose_covariance = pose_covariance;
+  return options;
+}
+
+// One draw: the reference pair's endpoints with Gaussian noise of sigma reference_px, then
+// `keyframes` keyframes with keyframe_px, a solve after each. Returns the newest refined pose.
+Rigid3d SolveNoiseDraw(const StereoRig& rig, int keyframes, double reference_px, double keyframe_px, std::mt19937* rng,
+                       ReferenceRefiner* refiner) {
   std::normal_distribution<double> pixel_noise(0.0, 1.0);
-  auto noisy = [&](const Rigid3d& cam_from_ref, int i) {
+  auto noisy = [&](const Rigid3d& cam_from_ref, int i, double sigma_px) {
     Seen s = Observe(rig, cam_from_ref, i);
     for (int v = 0; v < 4; ++v) {
-      s.left(v) += pixel_noise(rng);
-      s.right(v) += pixel_noise(rng);
+      s.left(v) += sigma_px * pixel_noise(*rng);
+      s.right(v) += sigma_px * pixel_noise(*rng);
     }
     s.left_line = (rig.left.K().transpose() * LineFromSegment(s.left)).normalized();
     return s;
   };
+  refiner->Reset(rig);
+  refiner->StartReference(static_cast<int>(kLines.size()));
+  for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+    const Seen s = noisy(Rigid3d(), i, reference_px);
+    refiner->SetLine(i, TrueLine(i), i != kDegenerate, s.left, s.right, s.left_line);
+  }
+  Rigid3d newest;
+  for (int k = 1; k <= keyframes; ++k) {
+    EXPECT_TRUE(refiner->CountFrame(KeyframePose(k)));
+    std::vector<ReferenceRefiner::Observation> observations;
+    for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
+      const Seen s = noisy(KeyframePose(k), i, keyframe_px);
+      observations.push_back({i, s.left, s.right, s.left_line});
+    }
+    EXPECT_TRUE(refiner->AddKeyframeAndSolve(KeyframePose(k), observations, &newest));
+  }
+  return newest;
+}
+
+TEST(ReferenceRefinerTest, NewestKeyframeCovarianceDescribesItsErrorOverNoiseDraws) {
+  // Endpoints with Gaussian noise of the endpoint sigma in every image (the reference pair's
+  // and four keyframes'): the reported marginal covariance of the newest keyframe's pose (the
+  // lines' uncertainty and correlations included) must describe the spread of its error. Mean
+  // NEES over 300 draws, 6 if consistent: 95 % of such means fall in [5.6, 6.4].
+  StereoRig rig;
+  // The marginal is computed only when used.
+  const ReferenceRefinementOptions options = NoiseDrawOptions(PoseCovarianceSource::kSolve);
+  std::mt19937 rng(11);
   const int draws = 300;
   double nees_sum = 0.0;
   for (int draw = 0; draw < draws; ++draw) {
     ReferenceRefiner refiner(options, 1.0);
-    refiner.Reset(rig);
-    refiner.StartReference(static_cast<int>(kLines.size()));
-    for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
-      const Seen s = noisy(Rigid3d(), i);
-      refiner.SetLine(i, TrueLine(i), i != kDegenerate, s.left, s.right, s.left_line);
-    }
-    Rigid3d newest;
-    for (int k = 1; k <= 4; ++k) {
-      ASSERT_TRUE(refiner.CountFrame(KeyframePose(k)));
-      std::vector<ReferenceRefiner::Observation> observations;
-      for (int i = 0; i < static_cast<int>(kLines.size()); ++i) {
-        const Seen s = noisy(KeyframePose(k), i);
-        observations.push_back({i, s.left, s.right, s.left_line});
-      }
-      ASSERT_TRUE(refiner.AddKeyframeAndSolve(KeyframePose(k), observations, &newest));
-    }
+    const Rigid3d newest = SolveNoiseDraw(rig, 4, 1.0, 1.0, &rng, &refiner);
     Matrix6d covariance;
     ASSERT_TRUE(refiner.NewestPoseCovariance(&covariance));
     // true = Exp(d) estimate (PoseManifold's and the filter's left perturbation).
@@ -205,6 +220,47 @@ TEST(ReferenceRefinerTest, NewestKeyframeCovarianceDescribesItsErrorOverNoiseDra
   std::printf("newest keyframe pose: mean NEES %.2f over %d draws\n", nees, draws);
   EXPECT_GT(nees, 5.0);
   EXPECT_LT(nees, 7.0);
+}
+
+TEST(ReferenceRefinerTest, ReferencePlacementCovarianceDescribesWhatExactKeyframesLeave) {
+  // Gaussian endpoint noise of the endpoint sigma in the reference pair only, sixteen exact
+  // keyframes: the keyframes fix the lines' shape and their own poses relative to the lines, so
+  // the newest keyframe's error is the reference pair's placement relative to its lines, moved
+  // into the newest camera: d = Ad(cam_from_ref) delta, delta ~ N(0, ReferencePlacementCovariance).
+  // Mean NEES over 300 draws, 6 if it describes that error exactly (95 % of such means in
+  // [5.6, 6.4]); somewhat more, as the keyframes, weighted like the reference, still let the
+  // lines bend toward its noise (the fewer keyframes, the more: about 6.7 with eight). Its trace
+  // is also below the newest keyframe's whole marginal with noisy keyframes.
+  StereoRig rig;
+  const ReferenceRefinementOptions options = NoiseDrawOptions(PoseCovarianceSource::kReportPlacement);
+  std::mt19937 rng(12);
+  const int draws = 300;
+  const int keyframes = 16;
+  double nees_sum = 0.0;
+  Matrix6d placement_at_newest = Matrix6d::Zero();
+  for (int draw = 0; draw < draws; ++draw) {
+    ReferenceRefiner refiner(options, 1.0);
+    const Rigid3d newest = SolveNoiseDraw(rig, keyframes, 1.0, 0.0, &rng, &refiner);
+    Matrix6d placement;
+    ASSERT_TRUE(refiner.ReferencePlacementCovariance(&placement));
+    Matrix6d unused;
+    EXPECT_FALSE(refiner.NewestPoseCovariance(&unused));  // not computed for this source
+    const Matrix6d ad = Adjoint(newest);
+    placement_at_newest = ad * placement * ad.transpose();
+    const Vector6d d = LogSE3(KeyframePose(keyframes) * newest.Inverse());
+    nees_sum += d.dot(placement_at_newest.ldlt().solve(d));
+  }
+  const double nees = nees_sum / draws;
+  std::printf("newest keyframe pose against the reference placement: mean NEES %.2f over %d draws\n", nees, draws);
+  EXPECT_GT(nees, 5.0);
+  EXPECT_LT(nees, 7.5);
+
+  // With noisy keyframes too, the newest keyframe's marginal holds the placement and more.
+  ReferenceRefiner refiner(NoiseDrawOptions(PoseCovarianceSource::kSolve), 1.0);
+  SolveNoiseDraw(rig, keyframes, 1.0, 1.0, &rng, &refiner);
+  Matrix6d marginal;
+  ASSERT_TRUE(refiner.NewestPoseCovariance(&marginal));
+  EXPECT_GT(marginal.trace(), placement_at_newest.trace());
 }
 
 // The refined lines' covariances after four noise-free keyframes, with the given residual, in
@@ -446,6 +502,41 @@ TEST(ReferenceRefinerTest, PoseCovarianceFromTheSolve) {
   }
   EXPECT_GT(widened, 20);
   EXPECT_GT(moved, 20);
+}
+
+TEST(ReferenceRefinerTest, ReferencePlacementAddedToTheReportedCovariance) {
+  // "report_placement" leaves every estimate as the filter's own makes it; from the first solve
+  // on the reported covariance gains the reference pair's placement moved into the current
+  // camera, Ad(cam_from_ref) S Ad(cam_from_ref)^T: positive semi-definite, and of rank 6 (the
+  // first reference pair is the world, so cam_from_ref is cam_from_world here).
+  const SimulatedSequence sim = RoomLoopStart(60);
+  const nlohmann::json every5 = {{"keyframe_interval", 5}};
+  const std::vector<TrackerOutput> own = TrackWithRefinement(sim.sequence, every5);
+  nlohmann::json placement = every5;
+  placement["pose_covariance"] = "report_placement";
+  const std::vector<TrackerOutput> reported = TrackWithRefinement(sim.sequence, placement);
+  ASSERT_EQ(own.size(), reported.size());
+  int added = 0;
+  Matrix6d first_placement = Matrix6d::Zero();
+  for (size_t k = 0; k < own.size(); ++k) {
+    EXPECT_TRUE(own[k].cam_from_world.rotation == reported[k].cam_from_world.rotation &&
+                own[k].cam_from_world.translation == reported[k].cam_from_world.translation && own[k].status == reported[k].status)
+        << "frame " << k;
+    const Matrix6d extra = reported[k].covariance - own[k].covariance;
+    if (k < 5) {
+      EXPECT_EQ(extra.norm(), 0.0) << "frame " << k;  // before the first solve
+      continue;
+    }
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(extra);
+    EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.0) << "frame " << k;
+    // In the reference frame the term is the same between two solves.
+    const Matrix6d ad_inverse = Adjoint(reported[k].cam_from_world.Inverse());
+    const Matrix6d in_reference = ad_inverse * extra * ad_inverse.transpose();
+    if (added == 0) first_placement = in_reference;
+    if (k < 10) EXPECT_LT((in_reference - first_placement).norm(), 1e-9 * first_placement.norm()) << "frame " << k;
+    ++added;
+  }
+  EXPECT_EQ(added, static_cast<int>(own.size()) - 5);
 }
 
 // Mean 6-dof NEES of the tracker with `options` on `sim` (evaluation/consistency.h).

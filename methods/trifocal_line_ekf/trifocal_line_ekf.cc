@@ -32,9 +32,10 @@ void PaperPreset(StereoEkfOptions* filter, LineTransferOptions* m) {
 // Long runs in structured scenes (docs/long_sequences.md, issue 16): the reference lines refined
 // jointly with keyframes at least 5 frames and 5 mm apart, up to 300 (a reference pair's life on
 // the room loop), their remaining error as consider parameters of the filter, the process noise
-// adapted to the pose corrections with R fixed at a 1-px endpoint sigma, lines spanning under
-// 3 px across the epipolar lines left out. The setting of long_room_ci and of the rows named
-// "... dense keyframes" in the long-run results.
+// adapted to the pose corrections with R fixed at a 1-px endpoint sigma (above the +-1 px
+// images' 0.58 px: it also covers what the model leaves out, and keeps the corridor walk's
+// largest errors small), lines spanning under 3 px across the epipolar lines left out. The
+// setting of long_room_ci's "long_run" rows and of the long-run results' "dense keyframes" rows.
 void LongRunPreset(StereoEkfOptions* filter, LineTransferOptions* m) {
   filter->adaptive_noise = false;
   filter->adaptive_process_noise = true;

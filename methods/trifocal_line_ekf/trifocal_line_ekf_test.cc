@@ -25,8 +25,7 @@ TEST(TrifocalLineEkf, PaperPresetIsTheFaithfulSetting) {
 }
 
 TEST(TrifocalLineEkf, LongRunPresetIsTheSettingItNames) {
-  // The options written out in experiments/configs/ci/long_room_ci.json's row "refined,
-  // adaptive Q, dense keyframes" (and the long-run results' "dense keyframes" rows).
+  // The options written out in the long-run results' "dense keyframes" rows.
   const nlohmann::json written = nlohmann::json::parse(R"({
     "filter": {"adaptive_noise": false, "adaptive_process_noise": true},
     "measurement": {"consider_structure": true, "endpoint_sigma_px": 1.0, "min_epipolar_extent_px": 3,
