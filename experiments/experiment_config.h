@@ -9,8 +9,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,10 +81,10 @@ struct OrderingCheck {
 struct BoundCheck {
   std::string method;
   std::string metric;
-  double max = std::numeric_limits<double>::max();
+  std::optional<double> max;  // none: no upper bound (null in JSON)
   bool percent_of_path = false;
   nlohmann::json at = nlohmann::json::object();
-  double min = std::numeric_limits<double>::lowest();
+  std::optional<double> min;  // none: no lower bound
 };
 
 // A recorded stereo sequence (KITTI or EuRoC layout, frontend/image_sequence.h) run through the

@@ -60,11 +60,10 @@ RegressionReport CheckExpectations(const ExperimentConfig& config, const std::ve
                            (bound.percent_of_path ? 100.0 / row->metrics[kPathLengthM].mean : 1.0);
       const std::string what = "'" + bound.method + "' " + bound.metric + " mean" +
                                (bound.percent_of_path ? " as % of the path" : "");
-      const bool has_min = bound.min != BoundCheck().min, has_max = bound.max != BoundCheck().max;
-      const std::string limit = has_min && has_max ? "in [" + ReportNumber(bound.min) + ", " + ReportNumber(bound.max) + "]"
-                                : has_max          ? "<= " + ReportNumber(bound.max)
-                                                   : ">= " + ReportNumber(bound.min);
-      Record(std::isfinite(value) && value <= bound.max && value >= bound.min,
+      const std::string limit = bound.min && bound.max ? "in [" + ReportNumber(*bound.min) + ", " + ReportNumber(*bound.max) + "]"
+                                : bound.max            ? "<= " + ReportNumber(*bound.max)
+                                                       : ">= " + ReportNumber(bound.min.value_or(0.0));
+      Record(std::isfinite(value) && (!bound.max || value <= *bound.max) && (!bound.min || value >= *bound.min),
              what + " " + ReportNumber(value) + " " + limit + " at " + at,
              "the expected bound is lost at " + at + ": " + what + " = " + ReportNumber(value) + ", not " + limit,
              &report);

@@ -113,7 +113,8 @@ class FeatureModel {
   // kReferencePlacement, *covariance is the reference pair's placement relative to its
   // structure (a left perturbation of the reference camera, in its frame): every pose measured
   // against that structure inherits it, so it is added to the reported covariance as the
-  // reference pair's world covariance is, until the next solve or a new reference pair.
+  // reference pair's world covariance is, until a later solve gives another or a new reference
+  // pair starts.
   enum class RefinedCovarianceUse { kNone, kFilter, kReport, kReferencePlacement };
   virtual RefinedCovarianceUse RefinedPoseCovariance(const Matrix6d& /*filter_covariance*/,
                                                      Matrix6d* /*covariance*/) const {

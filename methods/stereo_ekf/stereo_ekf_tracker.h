@@ -189,6 +189,15 @@ struct StereoEkfPreset {
   void (*apply)(StereoEkfOptions* filter, MeasurementOptions* measurement);
 };
 
+// "default" and the presets' names, each as `quote` + name + `quote`, joined by `separator`.
+template <typename MeasurementOptions>
+std::string PresetNames(const std::vector<StereoEkfPreset<MeasurementOptions>>& presets, const std::string& quote,
+                        const std::string& separator) {
+  std::string names = quote + "default" + quote;
+  for (const StereoEkfPreset<MeasurementOptions>& p : presets) names += separator + quote + p.name + quote;
+  return names;
+}
+
 // Creates a StereoEkfTracker from the options JSON every stereo EKF tracker takes:
 //   {"preset": "default" | <a name of presets>, "filter": {StereoEkfOptions},
 //    "measurement": {model options}}
@@ -204,15 +213,13 @@ std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, 
   reader.Get("preset", &preset);
   StereoEkfOptions filter;
   MeasurementOptions measurement;
-  std::string names = "\"default\"";
   bool found = preset == "default";
   for (const StereoEkfPreset<MeasurementOptions>& p : presets) {
-    names += ", \"" + p.name + "\"";
     if (p.name != preset) continue;
     p.apply(&filter, &measurement);
     found = true;
   }
-  if (!found) reader.Fail("preset", "must be one of " + names);
+  if (!found) reader.Fail("preset", "must be one of " + PresetNames(presets, "\"", ", "));
   JsonReader filter_reader = reader.Child("filter");
   ReadStereoEkfOptions(filter_reader, &filter);
   filter_reader.RejectUnknownKeys();
@@ -228,12 +235,9 @@ std::unique_ptr<PoseTracker> CreateStereoEkfTracker(const nlohmann::json& json, 
 template <typename MeasurementOptions>
 std::vector<OptionDoc> StereoEkfOptionDocs(const std::vector<StereoEkfPreset<MeasurementOptions>>& presets,
                                            const OptionSchema<MeasurementOptions>& measurement) {
-  std::string names = "default", doc = "the file's own values start from it";
-  for (const StereoEkfPreset<MeasurementOptions>& p : presets) {
-    names += " | " + p.name;
-    doc += "; \"" + p.name + "\": " + p.doc;
-  }
-  std::vector<OptionDoc> docs = {{"preset", names, "\"default\"", doc}};
+  std::string doc = "the file's own values start from it";
+  for (const StereoEkfPreset<MeasurementOptions>& p : presets) doc += "; \"" + p.name + "\": " + p.doc;
+  std::vector<OptionDoc> docs = {{"preset", PresetNames(presets, "", " | "), "\"default\"", doc}};
   StereoEkfOptionsSchema().List(StereoEkfOptions(), "filter", &docs);
   measurement.List(MeasurementOptions(), "measurement", &docs);
   return docs;

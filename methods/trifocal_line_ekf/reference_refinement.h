@@ -98,8 +98,9 @@ struct ReferenceRefinementOptions {
   // kReportCover leaves the filter's (and so every estimate) as it is and widens only the
   // reported covariance so, by (S - P)+, until the next solve. kReportPlacement also leaves
   // every estimate as it is and adds to the reported covariance the reference pair's placement
-  // relative to its lines (ReferencePlacementCovariance), which the filter's per-line consider
-  // parameters leave out once the refined lines replace the stereo ones.
+  // relative to its lines (ReferencePlacementCovariance): an error common to all the refined
+  // lines, which the filter's per-line consider parameters count as independent per line and
+  // so average away.
   PoseCovarianceSource pose_covariance = PoseCovarianceSource::kFilter;
   // The endpoint noise (sigma per coordinate, px) the solve weighs its residuals by; 0 = the
   // measurement model's endpoint_sigma_px. The filter's fixed R may be set above the images'
