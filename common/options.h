@@ -24,6 +24,7 @@
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -146,6 +147,29 @@ class OptionSchema {
     e.write = [member](const S& s) { return nlohmann::json(s.*member); };
     e.check = [member, range](const S& s) {
       return range.Contains(static_cast<double>(s.*member)) ? std::string() : range.Reason();
+    };
+    entries_.push_back(std::move(e));
+    return std::move(*this);
+  }
+  // An optional number: absent or null leaves it as it is (none by default) and none is
+  // written as null; a number is read as Field's are and must lie within `range`.
+  template <typename T, typename = std::enable_if_t<std::is_arithmetic_v<T> && !std::is_same_v<T, bool>>>
+  OptionSchema&& Field(std::string key, std::optional<T> S::*member, NumberRange range, std::string doc) && {
+    const std::string bounds = range.Allowed();
+    Entry e = MakeEntry(std::move(key), std::move(doc),
+                        std::string("null or ") + (std::is_integral_v<T> ? "an integer" : "a number") +
+                            (bounds == "any" ? "" : " " + bounds));
+    const std::string k = e.key;
+    e.read = [k, member](JsonReader& r, S* s) {
+      const nlohmann::json* v = r.Find(k);
+      if (v == nullptr || v->is_null()) return;
+      T value{};
+      r.Get(k, &value);
+      s->*member = value;
+    };
+    e.write = [member](const S& s) { return s.*member ? nlohmann::json(*(s.*member)) : nlohmann::json(); };
+    e.check = [member, range](const S& s) {
+      return !(s.*member) || range.Contains(static_cast<double>(*(s.*member))) ? std::string() : range.Reason();
     };
     entries_.push_back(std::move(e));
     return std::move(*this);

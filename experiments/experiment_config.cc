@@ -191,24 +191,12 @@ const OptionSchema<OrderingCheck>& OrderingSchema() {
 
 const OptionSchema<BoundCheck>& BoundSchema() {
   using B = BoundCheck;
-  // A side of the bound: a number, or absent or null for none.
-  const auto read_side = [](const char* key, std::optional<double> B::*side) {
-    return [key, side](JsonReader& r, B* b) {
-      const nlohmann::json* v = r.Find(key);
-      if (v == nullptr || v->is_null()) return;
-      if (!v->is_number()) r.Fail(key, "expected a number or null");
-      b->*side = v->get<double>();
-    };
-  };
-  const auto write_side = [](std::optional<double> B::*side) {
-    return [side](const B& b) { return b.*side ? nlohmann::json(*(b.*side)) : nlohmann::json(); };
-  };
   static const OptionSchema<B> schema =
       OptionSchema<B>()
           .Field("method", &B::method, {}, "id of the method bounded")
           .Field("metric", &B::metric, {}, "a trial metric (summary.csv's columns without _mean)")
-          .Custom("max", read_side("max", &B::max), write_side(&B::max), "number or null", "highest mean allowed")
-          .Custom("min", read_side("min", &B::min), write_side(&B::min), "number or null", "lowest mean allowed")
+          .Field("max", &B::max, AnyNumber(), "highest mean allowed")
+          .Field("min", &B::min, AnyNumber(), "lowest mean allowed")
           .Field("percent_of_path", &B::percent_of_path, "bound 100 mean(metric) / mean(path_length_m) instead")
           .Field("at", &B::at, kAtDoc)
           .Check("metric", [](const B& b) { return MetricNameError(b.metric); })

@@ -60,9 +60,11 @@ RegressionReport CheckExpectations(const ExperimentConfig& config, const std::ve
                            (bound.percent_of_path ? 100.0 / row->metrics[kPathLengthM].mean : 1.0);
       const std::string what = "'" + bound.method + "' " + bound.metric + " mean" +
                                (bound.percent_of_path ? " as % of the path" : "");
-      const std::string limit = bound.min && bound.max ? "in [" + ReportNumber(*bound.min) + ", " + ReportNumber(*bound.max) + "]"
-                                : bound.max            ? "<= " + ReportNumber(*bound.max)
-                                                       : ">= " + ReportNumber(bound.min.value_or(0.0));
+      // The config check asks for at least one side.
+      const std::string limit =
+          bound.min && bound.max ? "in [" + ReportNumber(*bound.min) + ", " + ReportNumber(*bound.max) + "]"
+          : bound.max            ? "<= " + ReportNumber(*bound.max)
+                                 : ">= " + ReportNumber(*bound.min);
       Record(std::isfinite(value) && (!bound.max || value <= *bound.max) && (!bound.min || value >= *bound.min),
              what + " " + ReportNumber(value) + " " + limit + " at " + at,
              "the expected bound is lost at " + at + ": " + what + " = " + ReportNumber(value) + ", not " + limit,

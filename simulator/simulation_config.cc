@@ -47,19 +47,6 @@ constexpr int kMaxPaperLines = 100000;
 constexpr double kMaxSceneSizeM = 1000.0;     // room and corridor sides, paper box and segments
 constexpr double kMaxStepM = 10.0;            // per-frame translations and wobbles
 
-// null or absent: no override.
-void ReadSeedOverride(JsonReader& r, const std::string& key, std::optional<std::uint64_t>* value) {
-  const nlohmann::json* v = r.Find(key);
-  if (v == nullptr || v->is_null()) return;
-  std::uint64_t seed = 0;
-  r.Get(key, &seed);
-  *value = seed;
-}
-
-nlohmann::json SeedToJson(const std::optional<std::uint64_t>& seed) {
-  return seed ? nlohmann::json(*seed) : nlohmann::json(nullptr);
-}
-
 // A 3-vector field of S.
 template <typename S>
 OptionSchema<S>&& Vector3Field(OptionSchema<S>&& schema, const std::string& key, Eigen::Vector3d S::*member,
@@ -279,11 +266,7 @@ const OptionSchema<SeedOverrides>& SeedOverridesSchema() {
     for (auto [key, member] : {std::pair{"scene", &C::scene}, std::pair{"motion", &C::motion},
                                std::pair{"noise", &C::noise}, std::pair{"outliers", &C::outliers},
                                std::pair{"images", &C::images}}) {
-      const std::string k = key;
-      const auto m = member;
-      std::move(s).Custom(
-          k, [k, m](JsonReader& r, C* c) { ReadSeedOverride(r, k, &(c->*m)); },
-          [m](const C& c) { return SeedToJson(c.*m); }, "null or an integer", "base seed of this stream (null: seed)");
+      std::move(s).Field(key, member, AnyNumber(), "base seed of this stream (null: seed)");
     }
     return s;
   }();
