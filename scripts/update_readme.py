@@ -279,8 +279,8 @@ FIXED_R = dict(ADAPTIVE_Q, **{"extent 3 px, fixed R 1 px": "refinement + conside
 FRESH = dict(PROCESS_NOISE, **{k: BEST_SETTING[k] for k in ("refinement + consider, epipolar extent 3 px",)})
 # The long_run preset with R at the images' noise and the reference placement reported (issue 16,
 # the covariance): one row in each *_placement config.
-PLACEMENT = {"long_run, R at the images' noise, reference placement reported, Q floor 2e-5":
-             "preset long_run, R at the images' 0.577 px, reference placement reported, Q floor 2e-5"}
+PLACEMENT = {"long_run, R at the images' noise, reference placement reported, Q floor 2e-5, no carry-over":
+             "preset long_run, R at the images' 0.577 px, reference placement reported, Q floor 2e-5, no carry-over"}
 LONG_RUNS = (("long_room", "room loop, 1428 frames", None),
              ("long_room_endpoint_residual", "room loop, 1428 frames", BEST_SETTING),
              ("long_room_process_noise", "room loop, 1428 frames", PROCESS_NOISE),
