@@ -126,8 +126,41 @@ std::string StagingDir(const std::string& dir) {
   return staging + ".partial";
 }
 
-void ReplaceDirectory(const std::string& staging, const std::string& dir) {
+namespace {
+
+// True when `dir` holds nothing, or nothing but the relative path `kept`.
+bool HoldsOnly(const fs::path& dir, const fs::path& kept) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    if (kept.empty() || entry.path().filename() != *kept.begin() || !entry.is_directory()) return false;
+    const fs::path rest = kept.lexically_relative(*kept.begin());
+    if (rest != "." && !HoldsOnly(entry.path(), rest)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void CheckReplaceableDirectory(const std::string& what, const std::string& dir, const std::string& marker,
+                               const std::string& program, const std::string& kept) {
   std::error_code error;
+  if (!fs::exists(dir, error)) return;
+  if (!fs::is_directory(dir, error)) throw std::runtime_error(what + " " + dir + ": exists and is not a directory");
+  if (!fs::exists(fs::path(dir) / marker, error) && !HoldsOnly(dir, kept)) {
+    throw std::runtime_error(what + " " + dir + ": holds files no " + program + " wrote (it has no " + marker +
+                             ") and the run replaces the directory whole; give a new or empty directory, or move "
+                             "those files out");
+  }
+}
+
+void ReplaceDirectory(const std::string& staging, const std::string& dir, const std::string& kept) {
+  std::error_code error;
+  const fs::path kept_path = fs::path(dir) / kept;
+  if (!kept.empty() && fs::exists(kept_path, error)) {
+    const fs::path target = fs::path(staging) / kept;
+    CreateDirectories(target.parent_path().string());
+    fs::rename(kept_path, target, error);
+    if (error) throw std::runtime_error(kept_path.string() + ": cannot move into " + staging + " (" + error.message() + ")");
+  }
   const bool replaces = fs::exists(dir, error);
   const std::string old = dir + ".old." + std::to_string(::getpid());
   if (replaces) {

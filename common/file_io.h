@@ -45,10 +45,18 @@ std::string JoinPath(const std::string& dir, const std::string& file);
 void CreateDirectories(const std::string& dir);
 // An output directory is written whole or not at all, like a file: everything goes into
 // StagingDir(dir) ("<dir>.partial", trailing slashes dropped), which ReplaceDirectory then
-// renames to `dir`; the old `dir`, if any, is moved aside first and removed last. Throws
-// std::runtime_error naming both directories when a rename fails.
+// renames to `dir`; the old `dir`, if any, is moved aside first and removed last, except its
+// subfolder `kept` (a relative path, "" = none), which moves into the new one (run_experiment
+// keeps other runs' shards, raw/shards). Throws std::runtime_error naming both directories when
+// a rename fails.
 std::string StagingDir(const std::string& dir);
-void ReplaceDirectory(const std::string& staging, const std::string& dir);
+void ReplaceDirectory(const std::string& staging, const std::string& dir, const std::string& kept = "");
+// Before the work: a directory that `program` will replace whole must not hold files a user put
+// there, which would go with it. It may be absent, or a directory that holds `marker` (a file
+// the program writes into every such directory: an earlier output of its own), nothing, or
+// nothing but `kept`. Otherwise throws std::runtime_error "<what> <dir>: ..." saying why.
+void CheckReplaceableDirectory(const std::string& what, const std::string& dir, const std::string& marker,
+                               const std::string& program, const std::string& kept = "");
 // Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and
 // rename, so readers never see a half-written file; an existing device or FIFO directly.
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);

@@ -24,6 +24,46 @@ std::string TempDir(const std::string& name) {
   return dir;
 }
 
+void Touch(const std::string& path) {
+  fs::create_directories(fs::path(path).parent_path());
+  std::ofstream(path) << "x";
+}
+
+TEST(CheckReplaceableDirectory, RefusesADirectoryOfOtherFiles) {
+  const std::string dir = TempDir("replaceable");
+  const auto check = [&](const std::string& out) {
+    return ErrorOf([&] { CheckReplaceableDirectory("--out", out, "run.json", "prog", "raw/shards"); });
+  };
+  EXPECT_EQ(check(dir + "/absent"), "");
+  EXPECT_EQ(check(dir), "");  // empty
+  Touch(dir + "/raw/shards/0-of-2/run.json");
+  EXPECT_EQ(check(dir), "");  // nothing but the kept subfolder
+  Touch(dir + "/raw/notes.txt");
+  EXPECT_EQ(check(dir), "--out " + dir +
+                            ": holds files no prog wrote (it has no run.json) and the run replaces the directory "
+                            "whole; give a new or empty directory, or move those files out");
+  Touch(dir + "/run.json");
+  EXPECT_EQ(check(dir), "");  // an earlier output of the program
+  EXPECT_EQ(check(dir + "/run.json"), "--out " + dir + "/run.json: exists and is not a directory");
+  // Without a kept subfolder only an empty directory or an earlier output qualifies.
+  const std::string viz = TempDir("replaceable_viz");
+  Touch(viz + "/raw/shards/x");
+  EXPECT_NE(ErrorOf([&] { CheckReplaceableDirectory("--viz", viz, "marker.csv", "prog"); }), "");
+}
+
+TEST(ReplaceDirectory, CarriesTheKeptSubfolderOver) {
+  const std::string dir = TempDir("replace_kept"), staging = StagingDir(dir);
+  Touch(dir + "/old.txt");
+  Touch(dir + "/raw/shards/0-of-2/run.json");
+  fs::remove_all(staging);
+  Touch(staging + "/new.txt");
+  ReplaceDirectory(staging, dir, "raw/shards");
+  EXPECT_TRUE(fs::exists(dir + "/new.txt"));
+  EXPECT_TRUE(fs::exists(dir + "/raw/shards/0-of-2/run.json"));
+  EXPECT_FALSE(fs::exists(dir + "/old.txt"));
+  EXPECT_FALSE(fs::exists(staging));
+}
+
 TEST(OpenInputFile, ErrorsNameTheFile) {
   const std::string dir = TempDir("open");
   EXPECT_EQ(ErrorOf([&] { OpenInputFile(dir); }), dir + ": is a directory, expected a file");

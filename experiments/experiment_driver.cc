@@ -15,43 +15,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// True when `dir` holds nothing but other runs' shard outputs (raw/shards/), or nothing.
-bool HoldsOnlyShards(const fs::path& dir) {
-  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-    if (entry.path().filename() != "raw" || !entry.is_directory()) return false;
-    for (const fs::directory_entry& sub : fs::directory_iterator(entry.path())) {
-      if (sub.path().filename() != "shards") return false;
-    }
-  }
-  return true;
-}
+// Other runs' shard outputs under out_dir (and perhaps what is being merged): the swap that
+// replaces out_dir carries them over.
+constexpr const char* kShardsDir = "raw/shards";
 
-// An out_dir that exists must be a directory: the swap would replace a file (a config given as
-// --out) with the results. And it must be an earlier run's output (its run.json) or hold nothing
-// but shards: the swap replaces it whole, and files a user put there would go with it.
 void CheckOutputDir(const std::string& out_dir) {
-  std::error_code error;
-  if (!fs::exists(out_dir, error)) return;
-  if (!fs::is_directory(out_dir, error)) throw std::runtime_error("--out " + out_dir + ": exists and is not a directory");
-  if (!fs::exists(fs::path(out_dir) / "run.json", error) && !HoldsOnlyShards(out_dir)) {
-    throw std::runtime_error("--out " + out_dir +
-                             ": holds files no run_experiment wrote (it has no run.json) and the run replaces the "
-                             "directory whole; give a new or empty directory, or move those files out");
-  }
-}
-
-// Replaces `out_dir` with the complete `staging` directory. Shard outputs under
-// out_dir/raw/shards/ belong to other runs (and may be what was just merged): they move into the
-// new directory.
-void SwapIntoPlace(const std::string& staging, const std::string& out_dir) {
-  std::error_code error;
-  const fs::path shards = fs::path(out_dir) / "raw" / "shards";
-  if (fs::exists(shards, error)) {
-    CreateDirectories(JoinPath(staging, "raw"));
-    fs::rename(shards, fs::path(staging) / "raw" / "shards", error);
-    if (error) throw std::runtime_error(shards.string() + ": cannot move into " + staging + " (" + error.message() + ")");
-  }
-  ReplaceDirectory(staging, out_dir);
+  CheckReplaceableDirectory("--out", out_dir, "run.json", "run_experiment", kShardsDir);
 }
 
 // Writes raw/, config.resolved.json, the summaries (a whole run) and run.json last into `dir`,
@@ -127,7 +96,7 @@ ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& o
                 {"experiment_time_s", run.wall_time_s},
                 {"resumed_jobs", run_options.completed.size()}},
                start);
-  SwapIntoPlace(staging, options.out_dir);
+  ReplaceDirectory(staging, options.out_dir, kShardsDir);
   return run;
 }
 
@@ -144,7 +113,7 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
       const fs::path relative = path.lexically_relative(root);
       return !relative.empty() && *relative.begin() != "..";
     };
-    if (inside(shard, out) && !inside(shard, out / "raw" / "shards")) {
+    if (inside(shard, out) && !inside(shard, out / kShardsDir)) {
       throw std::runtime_error("--out " + options.out_dir + ": holds the shard " + dir +
                                " outside raw/shards/; the new results would replace it");
     }
@@ -162,7 +131,7 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
                 {"merged_from", merged.shards},
                 {"experiment_time_s", experiment_time}},
                start);
-  SwapIntoPlace(staging, options.out_dir);
+  ReplaceDirectory(staging, options.out_dir, kShardsDir);
   return merged;
 }
 

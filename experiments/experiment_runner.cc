@@ -141,14 +141,14 @@ TrialResult RunTrial(const ExperimentConfig& config, const std::vector<SweepPoin
   r.method_index = job.method;
   r.point_index = job.point;
   r.trial = job.trial;
-  const std::string where = config.name + ": method '" + method.Id() + "' options";
-  if (!config.datasets.empty()) {
-    const DatasetSpec& dataset = config.datasets[job.point];
-    std::unique_ptr<PoseTracker> tracker = CreateTracker(method.name, MethodOptionsOn(method, dataset), where);
-    RunDatasetTrial(config, *tracker, dataset, &r);
+  const bool recorded = !config.datasets.empty();
+  const std::unique_ptr<PoseTracker> tracker =
+      CreateTracker(method.name, recorded ? MethodOptionsOn(method, config.datasets[job.point]) : method.options,
+                    config.name + ": method '" + method.Id() + "' options");
+  if (recorded) {
+    RunDatasetTrial(config, *tracker, config.datasets[job.point], &r);
     return r;
   }
-  std::unique_ptr<PoseTracker> tracker = CreateTracker(method.name, method.options, where);
   const SimulationConfig sim_config = TrialSimulation(config, points[job.point], job.trial);
   const SimulatedSequence sim = Simulate(sim_config);
   r.seed = sim_config.seed;

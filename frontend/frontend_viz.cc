@@ -128,7 +128,7 @@ void FrontEndPictures::Finish() {
     x.push_back(p.frame);
     y.push_back(p.angle_deg);
   }
-  WriteTextFileAtomically(partial_ + "/reprojection_error.csv", csv);
+  WriteTextFileAtomically(JoinPath(partial_, kMarkerFile), csv);
   WriteCurvePng(partial_ + "/reprojection_error.png", x, y,
                 "Re-projection error of the first pair's lines (Fig. 9)", "frame", "mean angle, deg");
   ReplaceDirectory(partial_, dir_);

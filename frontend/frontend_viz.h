@@ -28,6 +28,9 @@ namespace slt {
 
 class FrontEndPictures {
  public:
+  // A file every picture directory holds: it marks one as this class's output, which a new run
+  // may replace whole (CheckReplaceableDirectory, common/file_io.h).
+  static constexpr const char* kMarkerFile = "reprojection_error.csv";
   // `frames`: how many frames the run will have (to place the middle pictures).
   FrontEndPictures(const std::string& dir, const StereoRig& rig, int frames);
   void AddFrame(int k, const cv::Mat& left, const cv::Mat& right, const StereoFrontEnd& front_end,

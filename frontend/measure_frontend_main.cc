@@ -1,7 +1,7 @@
 // measure_frontend: the image front end against the ground truth of rendered sequences
 // (issue 18's numbers; docs/frontend.md quotes the output in results/frontend/).
 //
-//   measure_frontend [--frames N] [--step K] [--method NAME] [--config FILE] [--out DIR]
+//   measure_frontend [--frames N] [--step K] [--method NAME] [--tracker-config FILE] [--config FILE] [--out DIR]
 //                    [--scene TEXT] [--skip-detectors | --skip-sequences] [--first F] [--detector NAME]
 //
 // Four scenes are rendered in memory (render/, default image settings: noise, defocus blur,
@@ -184,8 +184,16 @@ double Ate(const SimulatedSequence& sequence, const Trajectory& estimate) {
   return EvaluateTrajectory(sequence.ground_truth, estimate, EvaluationOptions()).ate_trans_m.rmse;
 }
 
-Trajectory TrackObservations(const std::string& method, const StereoSequence& observations) {
-  const std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
+// The tracker paired with the front end (--method, --tracker-config).
+struct TrackerChoice {
+  std::string method;
+  nlohmann::json options;
+  std::string where;  // the options' file, for errors
+  std::unique_ptr<PoseTracker> Create() const { return CreateTracker(method, options, where); }
+};
+
+Trajectory TrackObservations(const TrackerChoice& choice, const StereoSequence& observations) {
+  const std::unique_ptr<PoseTracker> tracker = choice.Create();
   Trajectory trajectory;
   for (const TrackedFrame& frame : TrackSequence(*tracker, observations)) {
     trajectory.push_back({frame.frame_time, frame.output.cam_from_world.Inverse()});
@@ -193,7 +201,7 @@ Trajectory TrackObservations(const std::string& method, const StereoSequence& ob
   return trajectory;
 }
 
-std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const std::string& method,
+std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const TrackerChoice& choice,
                           const FrontEndOptions& common_options) {
   Table table = MarkdownTable(
       {"scene", "frames", "path, m", "detection frames", "new references", "lost", "stereo matches", "not judged",
@@ -213,7 +221,7 @@ std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const std::st
     nlohmann::json scene_options = ToJson(common_options);
     scene_options.merge_patch(scene.options);
     const FrontEndOptions options = FrontEndOptionsFromJson(scene_options, "measure_frontend: " + scene.name);
-    const std::unique_ptr<PoseTracker> tracker = CreateTracker(method);
+    const std::unique_ptr<PoseTracker> tracker = choice.Create();
     StereoFrontEnd front_end(options, sequence.true_rig);
     ImageTracker image_tracker(front_end, *tracker, sequence.true_rig);
     // Judged against the scene's lines and, on the paper scene, its bars' second edges.
@@ -257,20 +265,20 @@ std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const std::st
     const FrontEndAudit::Result& ri = identity.result();
     const double path = PathLengthM(sequence.ground_truth);
     const double ate_images = Ate(sequence, from_images);
-    const double ate_perfect = Ate(sequence, TrackObservations(method, sequence.sequence));
+    const double ate_perfect = Ate(sequence, TrackObservations(choice, sequence.sequence));
     // The same observations with Gaussian endpoint noise of the front end's RMS error (the
     // noise stream differs from the scene's and the motion's: same lines, same poses).
     SimulationConfig noisy_config = config;
     noisy_config.noise.model = NoiseModel::kGaussian;
     noisy_config.noise.endpoint_px = r.EndpointRms();
-    const double ate_noisy = Ate(sequence, TrackObservations(method, Simulate(noisy_config).sequence));
+    const double ate_noisy = Ate(sequence, TrackObservations(choice, Simulate(noisy_config).sequence));
     // The front end's own tracks (same lines, ids and frames) with its across-line error replaced:
     // by none, and by independent Gaussian noise of its RMS (the synthetic protocol's model).
     const std::uint64_t seed = config.NoiseSeed();
     const double ate_own_truth =
-        Ate(sequence, TrackObservations(method, WithErrorReplaced(sequence, judged.lines, observed, 0.0, seed)));
+        Ate(sequence, TrackObservations(choice, WithErrorReplaced(sequence, judged.lines, observed, 0.0, seed)));
     const double ate_own_noisy = Ate(
-        sequence, TrackObservations(method, WithErrorReplaced(sequence, judged.lines, observed, r.EndpointRms(), seed)));
+        sequence, TrackObservations(choice, WithErrorReplaced(sequence, judged.lines, observed, r.EndpointRms(), seed)));
     const auto f = [](const char* format, double v) { return StringPrintf(format, v); };
     const auto n = [](long v) { return std::to_string(v); };
     table.AddRow({scene.name, n(config.frames), f("%.2f", path), n(detection_frames), n(new_references), n(lost),
@@ -308,14 +316,14 @@ int main(int argc, char** argv) {
   using namespace slt;
   CLI::App app{"Measure the image front end on rendered sequences (results/frontend/)."};
   int frames = 200, step = 20;
-  std::string method = "trifocal_line_ekf", out, config_path;
+  std::string method = "trifocal_line_ekf", tracker_config_path, out, config_path;
   bool skip_detectors = false, skip_sequences = false;
   std::string only_scene, only_detector;
   int first = 0;
   app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
   app.add_option("--step", step, "Detector table: every step-th frame")->check(CLI::Range(1, 100000));
   app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
-  app.add_option("--method", method, "Tracker paired with the front end");
+  AddTrackerOptions(app, &method, &tracker_config_path, "--tracker-config");
   app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
   app.add_flag("--skip-sequences", skip_sequences, "Only the detectors");
@@ -326,18 +334,23 @@ int main(int argc, char** argv) {
   return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
     const FrontEndOptions options = FrontEndOptionsFromJson(ReadOptionsFile(config_path), config_path);
+    const TrackerChoice choice{method, ReadOptionsFile(tracker_config_path), tracker_config_path};
+    choice.Create();  // an unknown tracker or invalid options fail before the work
     const std::deque<MeasuredScene> scenes = Scenes(frames, only_scene);
-    // The options measured, when not the defaults: the config's file name and its content.
-    const std::string config_note =
-        config_path.empty() ? ""
-                            : " --config " + std::filesystem::path(config_path).filename().string() + "` with `" +
-                                  ReadJsonFile(config_path).dump();
+    // The options measured, when not the defaults: the configs' file names, then their contents.
+    std::string flags, contents;
+    for (const auto& [flag, path] : {std::pair{"--tracker-config", tracker_config_path}, {"--config", config_path}}) {
+      if (path.empty()) continue;
+      flags += std::string(" ") + flag + " " + std::filesystem::path(path).filename().string();
+      contents += (contents.empty() ? "` with `" : "`, `") + ReadJsonFile(path).dump();
+    }
+    const std::string config_note = flags + contents;
     const std::string selection = (first ? StringPrintf(" --first %d", first) : std::string()) +
                                   (only_detector.empty() ? "" : " --detector " + only_detector);
     const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s%s`.\n\n",
                                             frames, step, method.c_str(), selection.c_str(), config_note.c_str());
     const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, first, step, only_detector, options);
-    const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, method, options);
+    const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, choice, options);
     std::printf("%s\n%s", detectors.c_str(), sequences.c_str());
     if (!out.empty()) {
       std::filesystem::create_directories(out);

@@ -82,6 +82,8 @@ int main(int argc, char** argv) {
 
     CheckOutputsBeforeWork({{"--output", output}, {"--save-observations", observations_path}, {"--log", log_path}},
                            {path, config_path, tracker_config_path});
+    // The pictures replace --viz DIR whole: not a folder of the user's own files (or the input).
+    if (!viz_dir.empty()) CheckReplaceableDirectory("--viz", viz_dir, FrontEndPictures::kMarkerFile, "track_images");
     std::optional<StereoLinesWriter> writer;
     if (!observations_path.empty()) writer.emplace(observations_path, rig);
     std::optional<FrontEndPictures> pictures;

@@ -67,8 +67,15 @@ struct RansacOptions {
   std::uint64_t seed = 1;     // the caller's Ransac::Reset(seed) when it starts over
 };
 
-// Keys "ransac_max_iterations", "ransac_confidence" and "seed".
-const OptionSchema<RansacOptions>& RansacOptionsSchema();
+inline const OptionSchema<RansacOptions>& RansacOptionsSchema() {
+  static const OptionSchema<RansacOptions> schema =
+      OptionSchema<RansacOptions>()
+          .Field("ransac_max_iterations", &RansacOptions::max_iterations, AtLeast(1), "RANSAC samples at most")
+          .Field("ransac_confidence", &RansacOptions::confidence, InRange(0.0, 1.0, "()"),
+                 "RANSAC adaptive stopping: probability of an all-inlier sample")
+          .Field("seed", &RansacOptions::seed, AnyNumber(), "seed of the RANSAC sampler (reset with the tracker)");
+  return schema;
+}
 
 template <typename Model>
 struct RansacResult {

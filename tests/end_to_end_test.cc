@@ -194,6 +194,16 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
   Result r = RunCommand(Bin("simulate") + " " + Path("sim.json") + " --out " + Path("run") + " --images --threads 1");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string images_traj = Path("images.tum"), perfect_traj = Path("perfect.tum");
+  // --viz replaces its folder whole: a folder of the user's own files is refused before any work.
+  fs::create_directories(Path("mine"));
+  std::ofstream(Path("mine/notes.txt")) << "mine";
+  r = RunCommand(Bin("track_images") + " --path " + Path("run") + " --method trifocal_line_ekf --output " +
+                 Path("refused.tum") + " --viz " + Path("mine"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("--viz " + Path("mine") + ": holds files no track_images wrote"), std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(Path("mine/notes.txt")));
+  EXPECT_FALSE(fs::exists(Path("refused.tum")));
   r = RunCommand(Bin("track_images") + " --path " + Path("run") + " --method trifocal_line_ekf --output " + images_traj +
                  " --save-observations " + Path("obs.json") + " --viz " + Path("viz") + " --log " + Path("log.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
