@@ -277,10 +277,12 @@ PROCESS_NOISE = dict(ADAPTIVE_Q, **{"extent 3 px, accel 5e-5, fixed R 1 px":
 # The corridor walk sways: it keeps the default process noise, with the fixed endpoint sigma.
 FIXED_R = dict(ADAPTIVE_Q, **{"extent 3 px, fixed R 1 px": "refinement + consider + epipolar extent 3 px, fixed R 1 px"})
 FRESH = dict(PROCESS_NOISE, **{k: BEST_SETTING[k] for k in ("refinement + consider, epipolar extent 3 px",)})
-# The long_run preset with R at the images' noise and the reference placement reported (issue 16,
-# the covariance): one row in each *_placement config.
-PLACEMENT = {"long_run, R at the images' noise, reference placement reported, Q floor 2e-5, no carry-over":
-             "preset long_run, R at the images' 0.577 px, reference placement reported, Q floor 2e-5, no carry-over"}
+# The preset long_run_consistent (issue 16, the covariance): one row in each *_placement config;
+# at +-0.25 px with R at that noise, with and without its robust start's determined directions.
+PLACEMENT = {"long_run_consistent": "preset long_run_consistent"}
+LOW_NOISE = {"long_run_consistent, R at 0.144 px, RANSAC on every direction":
+             "preset long_run_consistent, R at 0.144 px, RANSAC on every direction",
+             "long_run_consistent, R at 0.144 px": "preset long_run_consistent, R at 0.144 px"}
 LONG_RUNS = (("long_room", "room loop, 1428 frames", None),
              ("long_room_endpoint_residual", "room loop, 1428 frames", BEST_SETTING),
              ("long_room_process_noise", "room loop, 1428 frames", PROCESS_NOISE),
@@ -294,9 +296,11 @@ LONG_RUNS = (("long_room", "room loop, 1428 frames", None),
              ("long_slow_loop_endpoint_residual", "room loop, 10000 frames", BEST_SETTING),
              ("long_slow_loop_process_noise", "room loop, 10000 frames", PROCESS_NOISE),
              ("long_slow_loop_placement", "room loop, 10000 frames", PLACEMENT),
+             ("long_slow_loop_point_tracker", "room loop, 10000 frames", None),
              ("long_corridor", "corridor walk, 301 frames", None),
              ("long_corridor_process_noise", "corridor walk, 301 frames", FIXED_R),
              ("long_corridor_placement", "corridor walk, 301 frames", PLACEMENT),
+             ("long_corridor_placement_low_noise", "corridor walk, 301 frames, ±0.25 px", LOW_NOISE),
              ("long_corridor_slow", "corridor walk, 1201 frames", None),
              ("long_corridor_slow_process_noise", "corridor walk, 1201 frames", FIXED_R),
              ("long_corridor_slow_placement", "corridor walk, 1201 frames", PLACEMENT))

@@ -1,6 +1,7 @@
 #include "methods/stereo_ekf/least_squares.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 
@@ -128,7 +129,7 @@ bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int
 
 bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                 const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
-                Matrix6d* information) {
+                Matrix6d* information, double max_sigma) {
   Rigid3d pose = *cam_from_ref;
   FeatureBlock block;
   NormalEquations ne;
@@ -144,12 +145,25 @@ bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& f
     }
     if (it == iterations) break;  // the last pass only evaluates the information at the solution
     // A singular Hessian is allowed: Yu's minimal sample, two points, never observes the
-    // rotation about the line through them. LDLT's (near-)zero pivot meets a (near-)zero
-    // gradient component there, so that direction does not move; the others are solved.
+    // rotation about the line through them. LDLT's zero pivot meets a zero gradient component
+    // there, so that direction does not move; the others are solved. A direction observed barely
+    // moves by the gradient's noise over a small pivot: max_sigma keeps it too (header).
     // (Rejecting such samples was measured: RANSAC over points then fails.)
-    const Eigen::LDLT<Matrix6d> ldlt(ne.FullHessian());
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
-    const Vector6d step = -ldlt.solve(ne.gradient);
+    Vector6d step;
+    if (max_sigma > 0.0) {
+      const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(ne.FullHessian());
+      if (eigen.info() != Eigen::Success) return false;
+      step.setZero();
+      for (int d = 0; d < 6; ++d) {
+        const double lambda = eigen.eigenvalues()(d);
+        if (lambda * max_sigma * max_sigma < 1.0) continue;  // determined worse than max_sigma
+        step -= eigen.eigenvectors().col(d) * (eigen.eigenvectors().col(d).dot(ne.gradient) / lambda);
+      }
+    } else {
+      const Eigen::LDLT<Matrix6d> ldlt(ne.FullHessian());
+      if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
+      step = -ldlt.solve(ne.gradient);
+    }
     // Diverging: half a radian, or a metre, in one step of a per-frame pose.
     if (!step.allFinite() || step.tail<3>().norm() > 0.5 || step.head<3>().norm() > 1.0) return false;
     pose = ExpSE3(step) * pose;

@@ -96,11 +96,19 @@ bool WhitenedCost(const FeatureModel& model, const WeightedFeature& feature, int
 
 // Gauss-Newton without prior on the features `indices`, starting at *cam_from_ref, whitened with
 // each feature's covariance. On success returns true and sets *cam_from_ref and *information (the
-// Hessian J^T R^-1 J at the solution, possibly singular: a direction the features do not observe
-// is left where it started). Fails when a step diverges or a feature becomes degenerate (or
-// loses one of its measured rows). iterations = 0 only evaluates the information at *cam_from_ref.
+// Hessian H = J^T R^-1 J at the solution, possibly singular: a direction the features do not
+// observe is left where it started). Fails when a step diverges or a feature becomes degenerate
+// (or loses one of its measured rows). iterations = 0 only evaluates the information at
+// *cam_from_ref.
+//
+// max_sigma = 0 solves every direction (LDLT): a direction observed exactly not at all has a zero
+// pivot and a zero gradient and stays, but one observed barely (the noise of the features only:
+// the height seen by vertical lines) has a small pivot that divides the gradient's noise, and
+// the pose moves along it by anything. max_sigma > 0 steps only along the eigenvectors of H
+// whose standard deviation 1 / sqrt(lambda) is at most max_sigma (metres and radians alike:
+// the twist mixes both); the others keep the start's value (docs/long_sequences.md).
 bool RefinePose(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                 const int* indices, int count, int iterations, Rigid3d* cam_from_ref,
-                Matrix6d* information);
+                Matrix6d* information, double max_sigma = 0.0);
 
 }  // namespace slt

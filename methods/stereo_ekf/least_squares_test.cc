@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -139,6 +141,40 @@ TEST(RowsThatChangeWithThePose, AFeatureLosingARowCannotBeWhitenedThere) {
   const LinearTestModel keeping = RowsByPoseModel(FeatureBlock::kAllRows, FeatureBlock::kAllRows);
   pose = Rigid3d();
   EXPECT_TRUE(RefinePose(keeping, WhitenedAtStart(keeping), indices, 3, 10, &pose, &information));
+}
+
+TEST(RefinePose, MaxSigmaLeavesABarelyObservedDirectionWhereItStarted) {
+  // Three noisy features that see translation y (the second twist component) only through a
+  // factor 0.02 of their other directions, as vertical lines see the height: the LDLT solve
+  // moves along that direction by the noise divided by the small pivot; with max_sigma it stays
+  // where it started (M = I) and the five directions determined better than max_sigma are solved
+  // alike.
+  LinearTestModel model(3, 3, 1e-4);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  for (int i = 0; i < model.NumFeatures(); ++i) {
+    model.feature(i).a.col(1) *= 0.02;
+    for (int r = 0; r < 4; ++r) model.feature(i).offset(r) = 0.01 * normal(rng);
+  }
+  std::vector<WeightedFeature> features;
+  ASSERT_TRUE(WhitenedFeaturesAt(model, Rigid3d(), &features));
+  const int indices[3] = {0, 1, 2};
+  const double max_sigma = 0.05;
+  Rigid3d solved, kept;
+  Matrix6d information;
+  ASSERT_TRUE(RefinePose(model, features, indices, 3, 10, &solved, &information));
+  ASSERT_TRUE(RefinePose(model, features, indices, 3, 10, &kept, &information, max_sigma));
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(information);
+  ASSERT_GT(1.0 / std::sqrt(eigen.eigenvalues()(0)), max_sigma);  // one direction weaker
+  ASSERT_LT(1.0 / std::sqrt(eigen.eigenvalues()(1)), max_sigma);  // five stronger
+  const Vector6d weak = eigen.eigenvectors().col(0);
+  EXPECT_GT(std::abs(weak(1)), 0.99);  // it is the height
+  const Vector6d d_true = LogSE3(model.Truth()), d_solved = LogSE3(solved), d_kept = LogSE3(kept);
+  EXPECT_GT(std::abs(weak.dot(d_solved - d_true)), 5.0 * std::abs(weak.dot(d_true)));  // moved by the noise
+  EXPECT_LT(std::abs(weak.dot(d_kept)), 1e-4);                                           // kept at the start
+  for (int d = 1; d < 6; ++d) {
+    EXPECT_NEAR(eigen.eigenvectors().col(d).dot(d_kept), eigen.eigenvectors().col(d).dot(d_solved), 1e-4) << d;
+  }
 }
 
 }  // namespace

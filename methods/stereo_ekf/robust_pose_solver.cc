@@ -14,7 +14,7 @@ void PoseFromFeatures::MinimalSolve(const int* sample, int count, std::vector<Ri
   Matrix6d information;
   for (const Rigid3d& start : starts_) {
     Rigid3d pose = start;
-    if (RefinePose(model_, features_, indices, count, 6, &pose, &information)) models->push_back(pose);
+    if (RefinePose(model_, features_, indices, count, 6, &pose, &information, max_sigma_)) models->push_back(pose);
   }
 }
 
@@ -23,15 +23,16 @@ bool PoseFromFeatures::LocalOptimize(const std::vector<int>& inliers, Rigid3d* c
   for (int d : inliers) indices_.push_back(valid_[d]);
   Matrix6d information;
   return RefinePose(model_, features_, indices_.data(), static_cast<int>(indices_.size()), 5, cam_from_ref,
-                    &information);
+                    &information, max_sigma_);
 }
 
 void RobustPoseSolver::Solve(const FeatureModel& model, const std::vector<WeightedFeature>& features,
                              const std::vector<int>& valid, const std::vector<Rigid3d>& starts,
-                             const GateThresholds& gate, const RansacOptions& options, RobustSolveResult* result) {
+                             const GateThresholds& gate, const RansacOptions& options, double max_sigma,
+                             RobustSolveResult* result) {
   result->success = false;
   result->inliers.clear();
-  ransac_.Run(PoseFromFeatures(model, features, valid, starts, gate), options, starts, &ransac_result_);
+  ransac_.Run(PoseFromFeatures(model, features, valid, starts, gate, max_sigma), options, starts, &ransac_result_);
   if (!ransac_result_.success) return;
   for (int d : ransac_result_.inliers) result->inliers.push_back(valid[d]);
   result->cam_from_ref = ransac_result_.model;

@@ -22,10 +22,12 @@ class PoseFromFeatures {
 
   // `valid` lists the features with a usable block and whitener; `starts` are the poses every
   // sample's hypothesis is refined from (one hypothesis per start). `gate` gives the inlier
-  // threshold on the whitened squared residual.
+  // threshold on the whitened squared residual; max_sigma, the directions a hypothesis and the
+  // consensus refinement solve (RefinePose).
   PoseFromFeatures(const FeatureModel& model, const std::vector<WeightedFeature>& features,
-                   const std::vector<int>& valid, const std::vector<Rigid3d>& starts, const GateThresholds& gate)
-      : model_(model), features_(features), valid_(valid), starts_(starts), gate_(gate) {}
+                   const std::vector<int>& valid, const std::vector<Rigid3d>& starts, const GateThresholds& gate,
+                   double max_sigma)
+      : model_(model), features_(features), valid_(valid), starts_(starts), gate_(gate), max_sigma_(max_sigma) {}
 
   int NumData() const { return static_cast<int>(valid_.size()); }
   int MinSampleSize() const { return 2; }
@@ -48,6 +50,7 @@ class PoseFromFeatures {
   const std::vector<int>& valid_;
   const std::vector<Rigid3d>& starts_;
   const GateThresholds& gate_;
+  const double max_sigma_;
   mutable std::vector<int> indices_;  // feature indices of a datum set
 };
 
@@ -67,7 +70,7 @@ class RobustPoseSolver {
   // is theirs there (the update that follows re-linearises and iterates from this start).
   void Solve(const FeatureModel& model, const std::vector<WeightedFeature>& features,
              const std::vector<int>& valid, const std::vector<Rigid3d>& starts, const GateThresholds& gate,
-             const RansacOptions& options, RobustSolveResult* result);
+             const RansacOptions& options, double max_sigma, RobustSolveResult* result);
 
  private:
   Ransac<Rigid3d> ransac_;

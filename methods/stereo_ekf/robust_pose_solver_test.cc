@@ -35,7 +35,7 @@ TEST(RobustPoseSolver, SamplesEnoughTwoRowFeaturesToFixThePose) {
   RobustPoseSolver solver;
   solver.Reset(1);
   RobustSolveResult result;
-  solver.Solve(model, features, valid, {Rigid3d()}, gate, {200, 0.999}, &result);
+  solver.Solve(model, features, valid, {Rigid3d()}, gate, {200, 0.999}, 0.0, &result);
   ASSERT_TRUE(result.success);
   EXPECT_EQ(result.inliers.size(), 6u);
   EXPECT_LT(LogSE3(result.cam_from_ref * model.Truth().Inverse()).norm(), 1e-8);

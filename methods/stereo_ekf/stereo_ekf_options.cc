@@ -32,6 +32,8 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
           .Field("robust", &O::robust, "RANSAC start when the prior is weak or the filter unhealthy")
           .Field("robust_start_frames", &O::robust_start_frames, AtLeast(0), "frames after the start seeded by RANSAC")
           .Flat(&O::ransac, RansacOptionsSchema())
+          .Field("robust_max_sigma", &O::robust_max_sigma, AtLeast(0.0),
+                 "RANSAC hypotheses move only along directions determined to this sigma (m or rad; 0 = all)")
           .Field("min_consensus", &O::min_consensus, AtLeast(2), "features a RANSAC solve needs to count")
           .Flat(&O::lost, LostFrameOptionsSchema())
           .Field("min_features", &O::min_features, AtLeast(2).Note("two features over-determine the pose"),

@@ -73,6 +73,12 @@ struct StereoEkfOptions {
   bool robust = true;
   int robust_start_frames = 3;
   RansacOptions ransac;
+  // The directions a RANSAC hypothesis and its consensus refinement solve (RefinePose,
+  // least_squares.h): only those their features determine to this standard deviation or better
+  // (m or rad); the others keep the start's value. Two vertical lines leave the height to their
+  // noise, and a hypothesis that went anywhere in height explains every vertical line. 0 = every
+  // direction (LDLT).
+  double robust_max_sigma = 0.0;
   // A RANSAC solve counts only when at least min_consensus features agree (fewer when fewer are
   // measurable): any two features agree with the pose fitted to them, so a consensus of two out
   // of many confirms nothing.

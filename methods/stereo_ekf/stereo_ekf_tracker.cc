@@ -194,8 +194,8 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
   // A filter that has gone wrong may be far from the truth: also start from the reference
   // pose, where the features were first seen.
   if (!healthy_) starts_.push_back(Rigid3d());
-  robust_solver_.Solve(*model_, features_, valid_, starts_, gate_,
-                       options_.ransac, &robust_result_);
+  robust_solver_.Solve(*model_, features_, valid_, starts_, gate_, options_.ransac, options_.robust_max_sigma,
+                       &robust_result_);
   const int consensus = static_cast<int>(robust_result_.inliers.size());
   const int min_consensus = std::min(state->valid, options_.min_consensus);
   if (!robust_result_.success || consensus < min_consensus || !(weak_prior || consensus > state->gated)) return;

@@ -41,19 +41,32 @@ TEST(TrifocalLineEkf, LongRunPresetIsTheSettingItNames) {
   EXPECT_EQ(overridden["measurement"]["refinement"]["keyframe_interval"], 5);
 }
 
+TEST(TrifocalLineEkf, LongRunConsistentPresetIsTheSettingItNames) {
+  // The options the *_placement configs wrote out before the preset existed, and the robust
+  // start's directions.
+  const nlohmann::json written = nlohmann::json::parse(R"({
+    "preset": "long_run",
+    "filter": {"min_accel_sigma_m": 2e-5, "robust_max_sigma": 0.05},
+    "measurement": {"endpoint_sigma_px": 0.5773502691896258,
+                    "refinement": {"pose_covariance": "report_placement", "carry_over": false}}})");
+  const nlohmann::json preset = ResolvedOptions({{"preset", "long_run_consistent"}});
+  EXPECT_EQ(preset, ResolvedOptions(written));
+  EXPECT_NE(preset, ResolvedOptions({{"preset", "long_run"}}));
+}
+
 TEST(TrifocalLineEkf, UnknownPresetNamesTheKnownOnes) {
   try {
     TrifocalLineEkfInfo().create({{"preset", "fast"}}, "cfg.json");
     FAIL() << "no error";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("cfg.json: key 'preset': must be one of \"default\", \"paper\", \"long_run\""),
+    EXPECT_NE(std::string(e.what()).find("cfg.json: key 'preset': must be one of \"default\", \"paper\", \"long_run\", \"long_run_consistent\""),
               std::string::npos)
         << e.what();
   }
   const std::vector<OptionDoc> docs = TrifocalLineEkfInfo().list_options();
   ASSERT_FALSE(docs.empty());
   EXPECT_EQ(docs[0].key, "preset");
-  EXPECT_EQ(docs[0].allowed, "default | paper | long_run");
+  EXPECT_EQ(docs[0].allowed, "default | paper | long_run | long_run_consistent");
 }
 
 }  // namespace
