@@ -178,8 +178,9 @@ class PoseTracker {
   // after each Track() (and after Reset), whether the next frame should bring newly detected
   // and stereo-matched lines, under new ids, besides the lines tracked from the frames before.
   // Detection costs several times a tracked frame, so a tracker says yes only when it will use
-  // them: the stereo EKF trackers when their next frame will take a new reference pair (paper
-  // Sec. 3.3), a frame-to-frame or window tracker when its live line count falls. The default,
+  // them: the stereo EKF trackers when their next frame may take a new reference pair (paper
+  // Sec. 3.3; asked one frame ahead, since the frame a tracker switches on can only carry lines
+  // detected before it), a frame-to-frame or window tracker when its live line count falls. The default,
   // yes on every frame, is always correct, only slower.
   virtual bool WantsNewFeatures() const { return true; }
   // Asked after each Track(), like WantsNewFeatures: the tracker's prediction of the left

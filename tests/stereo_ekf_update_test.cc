@@ -4,6 +4,8 @@
 // single update is the Kalman update of eq. 19.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <cmath>
@@ -437,6 +439,38 @@ TEST(PredictNext, IsTheMotionModelsPredictionChainedToTheWorld) {
   EXPECT_GE(ekf->counters().new_references, 1);
   // A prediction, not the last pose: closer to the next frame's pose than standing still.
   EXPECT_LT(predicted_error, still_error);
+}
+
+TEST(WantsNewFeatures, AsksOnceAheadSoThatTheNewReferenceCarriesNewLines) {
+  // An image front end as the tracker sees it (frontend/image_tracking.h): lines 0-19 from the
+  // first frame, two of them lost per frame, and lines 20-39 only on the frames after the tracker
+  // asked (WantsNewFeatures). Half of the reference left is the switch (min_feature_fraction
+  // 0.5): frame 6 holds 8 of the 20. The tracker must have asked before that frame, so that it
+  // switches on frame 6 itself with the new lines, not on a frame of survivors, and asked once.
+  SimulationConfig config = SimulationConfigFromJson(nlohmann::json::object(), "test");
+  config.seed = 3;
+  const SimulatedSequence sim = Simulate(config);
+  auto tracker = CreateTracker("trifocal_line_ekf");
+  tracker->Reset(sim.sequence.rig);
+  bool new_lines = false;
+  int asked = 0, switched_at = -1;
+  for (int k = 0; k < 12 && switched_at < 0; ++k) {
+    new_lines = new_lines || (k > 0 && tracker->WantsNewFeatures());
+    asked += k > 0 && tracker->WantsNewFeatures();
+    StereoFrame frame = sim.sequence.frames[k];
+    for (auto* side : {&frame.left, &frame.right}) {
+      side->erase(std::remove_if(side->begin(), side->end(),
+                                 [&](const LineObservation& o) {
+                                   return o.id < 2 * k || (o.id >= 20 && !new_lines);
+                                 }),
+                  side->end());
+    }
+    const TrackerOutput out = tracker->Track(frame);
+    if (k > 0 && out.status == TrackingStatus::kNewReference) switched_at = k;
+  }
+  EXPECT_EQ(switched_at, 6);
+  EXPECT_EQ(asked, 1);
+  EXPECT_FALSE(tracker->WantsNewFeatures());  // the new reference has all it asked for
 }
 
 // filter.adaptive_process_noise (stereo_ekf_tracker.cc, AdaptProcessNoise): Q follows the motion

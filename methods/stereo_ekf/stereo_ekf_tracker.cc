@@ -101,9 +101,9 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   reference_placement_covariance_.setZero();
   filter_.Reset(options_);
   reported_widening_.setZero();
-  reference_features_ = model_->SetReference(frame);
+  reference_features_ = remaining_before_ = model_->SetReference(frame);
   if (consider_) consider_->Reset(*model_);
-  wants_new_features_ = false;
+  wants_new_features_ = asked_ahead_ = false;
   TrackerOutput out;
   out.status = TrackingStatus::kNewReference;
   out.reason = StatusReason::kFirstFrame;
@@ -499,9 +499,19 @@ void StereoEkfTracker::RefineStructure(FrameState* state) {
 void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* state) {
   const int remaining =
       options_.count_features == FeatureCount::kGated ? state->used : static_cast<int>(valid_.size());
+  const auto below = [&](double count) {
+    return count < options_.min_features || count < options_.min_feature_fraction * reference_features_;
+  };
   const bool few_left = remaining < options_.min_features;
-  const bool too_few = few_left || remaining < options_.min_feature_fraction * reference_features_;
-  wants_new_features_ = too_few;
+  const bool too_few = below(remaining);
+  // A front end detects new features only when asked before a frame (WantsNewFeatures): ask once
+  // ahead, when losing as many as on this frame and one more would leave too few, so that the
+  // frame which becomes the new reference carries new features and not only the survivors.
+  const int lost = std::max(0, remaining_before_ - remaining);
+  remaining_before_ = remaining;
+  const bool ask_ahead = !asked_ahead_ && below(remaining - lost - 1);
+  asked_ahead_ = asked_ahead_ || ask_ahead;
+  wants_new_features_ = too_few || ask_ahead;
   if (!too_few || model_->CurrentStereoFeatures() <= remaining) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = state->out.cam_from_world;
@@ -509,9 +519,9 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   reference_placement_covariance_.setZero();
   filter_.StartNewReferencePair();
   reported_widening_.setZero();
-  reference_features_ = model_->SetReference(frame);
+  reference_features_ = remaining_before_ = model_->SetReference(frame);
   if (consider_) consider_->Reset(*model_);
-  wants_new_features_ = false;
+  wants_new_features_ = asked_ahead_ = false;
   ++counters_.new_references;
   // On a frame without an update (possible when counting the lines inside the gate, the
   // paper's reading) the status stays kLost: the pose is still only a prediction.

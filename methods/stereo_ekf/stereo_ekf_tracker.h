@@ -147,6 +147,8 @@ class StereoEkfTracker : public PoseTracker {
   double correction_ratio_mean_ = 1.0;
   int frames_since_start_ = 0;
   int reference_features_ = 0;
+  int remaining_before_ = 0;  // the reference's features counted on the last frame
+  bool asked_ahead_ = false;  // new features were asked for ahead since the last reference
   // Added to the reported pose covariance (FeatureModel::RefinedCovarianceUse::kReport) until
   // the next solve or a new reference pair; zero otherwise.
   Matrix6d reported_widening_ = Matrix6d::Zero();
