@@ -224,10 +224,10 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   const double ate_images = AteRmse(Path("images.metrics.json")), ate_perfect = AteRmse(Path("perfect.metrics.json"));
-  // Measured on this sequence: 5.9 mm from the images (a 2.2 m loop), 0.03 mm from the perfect
-  // observations (docs/frontend.md: 5.0 mm with measure_frontend). Issue 18 asks for 1.5x the
-  // perfect run; the front end does not reach it (docs/frontend.md says why): these bounds guard
-  // what it does today. (The earlier 40-frame loop at 1.8 cm per frame swung between 27 and
+  // The ATE of this sequence (a 2.2 m loop) from the images and from the perfect observations is
+  // the room row of results/frontend/sequences.md; docs/frontend.md gives it over ten draws of
+  // the scene. Issue 18 asks for 1.5x the perfect run; the front end does not reach it
+  // (docs/frontend.md says why): these bounds guard what it does today. (The earlier 40-frame loop at 1.8 cm per frame swung between 27 and
   // 244 mm with small changes of the front end: no guard at all.)
   EXPECT_LT(ate_images, 0.015) << "perfect observations: " << ate_perfect;
   EXPECT_LT(ate_perfect, 0.005);
