@@ -5,11 +5,13 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/csv.h"
 #include "common/json_reader.h"
 
 namespace slt {
@@ -48,6 +50,16 @@ int RunProgram(const char* program, const Body& body) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", program, e.what());
     return 1;
+  }
+}
+
+// A seed option read as text (CLI11 would read "-1" as 2^64 - 1 and "010" as 8): the whole text a
+// decimal number in [0, 2^64 - 1], else CLI::ValidationError naming `flag`.
+inline std::uint64_t ParseSeedOption(const std::string& flag, const std::string& text) {
+  try {
+    return ParseInteger<std::uint64_t>(text);
+  } catch (const std::invalid_argument&) {
+    throw CLI::ValidationError(flag, "expected an integer in [0, 2^64-1], got '" + text + "'");
   }
 }
 

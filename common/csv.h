@@ -1,8 +1,11 @@
 // Table text. Minimal CSV (RFC 4180): fields containing a comma, a quote or a line break are
 // quoted, with quotes doubled; numbers are written in the shortest form that reads back to the
-// same double. And the escaping of a cell of a Markdown or LaTeX table.
+// same double. Strict number parsing (a double, an integer: the whole text or an error). And the
+// escaping of a cell of a Markdown or LaTeX table.
 #pragma once
 
+#include <charconv>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,6 +17,17 @@ std::string CsvLine(const std::vector<std::string>& fields);  // with the traili
 std::string FormatDouble(double value);
 // Parses FormatDouble's output (and any decimal number); throws std::invalid_argument.
 double ParseDouble(const std::string& text);
+// A whole number of type T, in decimal and nothing else (leading zeros allowed: "007" is 7; no
+// '+', no '-' for an unsigned T, no space, no fraction or exponent); throws std::invalid_argument
+// "not an integer: '<text>'", also when out of T's range.
+template <typename T>
+T ParseInteger(const std::string& text) {
+  T value{};
+  const char* last = text.data() + text.size();
+  const std::from_chars_result r = std::from_chars(text.data(), last, value);
+  if (text.empty() || r.ec != std::errc() || r.ptr != last) throw std::invalid_argument("not an integer: '" + text + "'");
+  return value;
+}
 
 // '|' escaped for a Markdown table cell.
 std::string MarkdownEscape(const std::string& text);

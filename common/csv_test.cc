@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <random>
 #include <thread>
@@ -44,6 +45,23 @@ TEST(Csv, NumbersRoundTripExactly) {
   EXPECT_EQ(ParseDouble(FormatDouble(-HUGE_VAL)), -HUGE_VAL);
   EXPECT_THROW(ParseDouble("1.5x"), std::invalid_argument);
   EXPECT_THROW(ParseDouble(""), std::invalid_argument);
+}
+
+// track_images --frames, run_experiment --shard, the --seed of simulate and measure_frontend,
+// raw/trials.csv's seeds: the whole text is the number.
+TEST(Csv, IntegersParseStrictly) {
+  EXPECT_EQ(ParseInteger<int>("42"), 42);
+  EXPECT_EQ(ParseInteger<int>("-7"), -7);
+  EXPECT_EQ(ParseInteger<int>("-2147483648"), -2147483647 - 1);
+  EXPECT_EQ(ParseInteger<int>("007"), 7);  // decimal, not octal
+  EXPECT_EQ(ParseInteger<int>("-0"), 0);
+  EXPECT_EQ(ParseInteger<std::uint64_t>("18446744073709551615"), 18446744073709551615ull);
+  for (const char* bad : {"", "1x", "x1", " 1", "1 ", "+1", "1.0", "1e3", "2147483648"}) {
+    EXPECT_THROW(ParseInteger<int>(bad), std::invalid_argument) << bad;
+  }
+  for (const char* bad : {"-1", "-0", "0x10", "18446744073709551616"}) {
+    EXPECT_THROW(ParseInteger<std::uint64_t>(bad), std::invalid_argument) << bad;
+  }
 }
 
 TEST(AtomicWrite, ReadersSeeTheOldOrTheNewFileNeverAPart) {

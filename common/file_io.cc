@@ -126,6 +126,15 @@ std::string StagingDir(const std::string& dir) {
   return staging + ".partial";
 }
 
+std::string FreshStagingDir(const std::string& dir) {
+  const std::string staging = StagingDir(dir);
+  std::error_code error;
+  fs::remove_all(staging, error);
+  if (error) throw std::runtime_error(staging + ": cannot remove an earlier run's files (" + error.message() + ")");
+  CreateDirectories(staging);
+  return staging;
+}
+
 namespace {
 
 // True when `dir` holds nothing, or nothing but the relative path `kept`.
@@ -149,6 +158,37 @@ void CheckReplaceableDirectory(const std::string& what, const std::string& dir, 
     throw std::runtime_error(what + " " + dir + ": holds files no " + program + " wrote (it has no " + marker +
                              ") and the run replaces the directory whole; give a new or empty directory, or move "
                              "those files out");
+  }
+}
+
+void RefusePathsInReplacedDirectory(const std::string& what, const std::string& dir,
+                                    const std::vector<std::pair<std::string, std::string>>& paths,
+                                    const std::string& kept) {
+  // Links resolved as far as they exist; a path that cannot be resolved (a component without
+  // permission) is taken as written.
+  const auto resolved = [](const fs::path& path) {
+    std::error_code error;
+    const fs::path p = fs::weakly_canonical(fs::absolute(path), error);
+    return error ? fs::absolute(path).lexically_normal() : p;
+  };
+  const fs::path root = resolved(dir);
+  const auto within = [&](const fs::path& path) {
+    const auto in = [](const fs::path& p, const fs::path& folder) {
+      const fs::path relative = p.lexically_relative(folder);
+      return !relative.empty() && *relative.begin() != "..";
+    };
+    return in(path, root) && (kept.empty() || !in(path, root / kept));
+  };
+  for (const auto& [flag, path] : paths) {
+    if (path.empty()) continue;
+    // Where the file is (an input read through a link) and where a new file of that name lands
+    // (an output renamed over a link replaces the link): either inside is refused.
+    const fs::path full = resolved(path), named = resolved(fs::path(path).parent_path()) / fs::path(path).filename();
+    if (within(full) || within(named)) {
+      throw std::runtime_error(what + " " + dir + ": holds " + flag + " " + path +
+                               ", which the run would delete (it replaces the directory whole" +
+                               (kept.empty() ? "" : ", keeping only " + kept + "/") + ")");
+    }
   }
 }
 

@@ -51,12 +51,23 @@ void CreateDirectories(const std::string& dir);
 // a rename fails.
 std::string StagingDir(const std::string& dir);
 void ReplaceDirectory(const std::string& staging, const std::string& dir, const std::string& kept = "");
+// StagingDir(dir), emptied of what an interrupted run left there and created: where the program
+// then writes what ReplaceDirectory swaps in. Throws std::runtime_error naming it.
+std::string FreshStagingDir(const std::string& dir);
 // Before the work: a directory that `program` will replace whole must not hold files a user put
 // there, which would go with it. It may be absent, or a directory that holds `marker` (a file
 // the program writes into every such directory: an earlier output of its own), nothing, or
 // nothing but `kept`. Otherwise throws std::runtime_error "<what> <dir>: ..." saying why.
 void CheckReplaceableDirectory(const std::string& what, const std::string& dir, const std::string& marker,
                                const std::string& program, const std::string& kept = "");
+// Before the work, too: none of `paths` ((flag, path) pairs, empty paths skipped: the program's
+// inputs and its other outputs) may be `dir` or lie in it outside its subfolder `kept` ("" =
+// none), through links or not, since replacing `dir` would take them with it. Throws
+// std::runtime_error "<what> <dir>: holds <flag> <path>, which the run would delete (it replaces
+// the directory whole[, keeping only <kept>/])".
+void RefusePathsInReplacedDirectory(const std::string& what, const std::string& dir,
+                                    const std::vector<std::pair<std::string, std::string>>& paths,
+                                    const std::string& kept = "");
 // Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and
 // rename, so readers never see a half-written file; an existing device or FIFO directly.
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);

@@ -51,6 +51,48 @@ TEST(CheckReplaceableDirectory, RefusesADirectoryOfOtherFiles) {
   EXPECT_NE(ErrorOf([&] { CheckReplaceableDirectory("--viz", viz, "marker.csv", "prog"); }), "");
 }
 
+// track_images --viz over its own --output, run_experiment --merge --out over a shard: whatever
+// lies in the replaced directory outside its kept subfolder, or is the directory, is refused.
+TEST(RefusePathsInReplacedDirectory, RefusesWhatTheReplacementWouldDelete) {
+  const std::string dir = TempDir("refuse_within");
+  const auto check = [&](const std::string& path) {
+    return ErrorOf([&] { RefusePathsInReplacedDirectory("--viz", dir + "/out", {{"--output", path}}, "raw/shards"); });
+  };
+  EXPECT_EQ(check(dir + "/out/traj.tum"),
+            "--viz " + dir + "/out: holds --output " + dir + "/out/traj.tum, which the run would delete (it replaces "
+            "the directory whole, keeping only raw/shards/)");
+  EXPECT_NE(check(dir + "/out"), "");
+  EXPECT_NE(check(dir + "/out/./a/../b/c.tum"), "");  // a path given unnormalised
+  EXPECT_NE(check(dir + "/out/raw/x.tum"), "");
+  EXPECT_EQ(check(dir + "/out/raw/shards/0-of-2"), "");  // the kept subfolder moves into the new one
+  EXPECT_EQ(check(dir + "/outside.tum"), "");
+  EXPECT_EQ(check(dir + "/out2/traj.tum"), "");  // a sibling with the same prefix
+  EXPECT_EQ(check(""), "");
+  // Through a symbolic link to the directory.
+  fs::create_directories(dir + "/out");
+  fs::create_directory_symlink(dir + "/out", dir + "/link");
+  EXPECT_NE(check(dir + "/link/traj.tum"), "");
+  // A link inside pointing out: an output renamed over it would land inside; a link outside
+  // pointing in: an input read through it lies inside.
+  fs::create_symlink(dir + "/outside.tum", dir + "/out/away.tum");
+  EXPECT_NE(check(dir + "/out/away.tum"), "");
+  Touch(dir + "/out/data.tum");
+  fs::create_symlink(dir + "/out/data.tum", dir + "/in.tum");
+  EXPECT_NE(check(dir + "/in.tum"), "");
+  // Without a kept subfolder the message names none.
+  EXPECT_EQ(ErrorOf([&] { RefusePathsInReplacedDirectory("--viz", dir + "/out", {{"--log", dir + "/out/l.csv"}}); }),
+            "--viz " + dir + "/out: holds --log " + dir + "/out/l.csv, which the run would delete (it replaces the "
+            "directory whole)");
+}
+
+TEST(FreshStagingDir, EmptiesWhatAnInterruptedRunLeft) {
+  const std::string dir = TempDir("fresh_staging") + "/out";
+  Touch(StagingDir(dir) + "/stale/file.txt");
+  EXPECT_EQ(FreshStagingDir(dir), StagingDir(dir));
+  EXPECT_TRUE(fs::is_directory(StagingDir(dir)));
+  EXPECT_TRUE(fs::is_empty(StagingDir(dir)));
+}
+
 TEST(ReplaceDirectory, CarriesTheKeptSubfolderOver) {
   const std::string dir = TempDir("replace_kept"), staging = StagingDir(dir);
   Touch(dir + "/old.txt");

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -64,6 +66,48 @@ TEST(ScriptRunner, RunsTheScriptOfTheSourceTreeAndReportsItsExitCode) {
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()), "scripts/no_such_script.py not found");
+  }
+}
+
+TEST(SourceTree, PathsLeadIntoTheSourceTreeWhileItExists) {
+  ASSERT_TRUE(std::filesystem::is_directory(SourceDir()));
+  EXPECT_EQ(SourceTreePath("results/x"), SourceDir() + "/results/x");
+}
+
+// run_experiment's configs and simulate's scenes: by path, or by name with or without the
+// extension; a missing one names where it looked and what there is.
+TEST(SourceTree, FindsNamedFilesAndListsThemWhenOneIsMissing) {
+  namespace fs = std::filesystem;
+  // ./frontend/configs/ is looked in before the source tree's: the same file from the source root.
+  const std::string file = SourceDir() + "/frontend/configs/room_752x480.json";
+  const std::string path = FindNamedFile("room_752x480", "frontend/configs", ".json", "simulation config");
+  EXPECT_TRUE(fs::equivalent(path, file)) << path;
+  EXPECT_EQ(FindNamedFile("room_752x480.json", "frontend/configs", ".json", "simulation config"), path);
+  EXPECT_EQ(FindNamedFile(file, "frontend/configs", ".json", "simulation config"), file);  // a path as given
+  const std::vector<std::string> names = FileNamesIn("experiments/configs", ".json");
+  EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
+  EXPECT_NE(std::find(names.begin(), names.end(), "ci/noise_sweep_ci"), names.end());  // below subfolders
+  EXPECT_TRUE(FileNamesIn("no/such/folder", ".json").empty());
+  try {
+    FindNamedFile("no_such_scene", "frontend/configs", ".json", "simulation config");
+    FAIL() << "found a file that does not exist";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("simulation config 'no_such_scene' not found (looked for no_such_scene, no_such_scene.json, "
+                            "frontend/configs/no_such_scene, ", 0),
+              0u)
+        << message;
+    EXPECT_NE(message.find("; available: corridor_640x480, paper_640x480, room_752x480, room_ci_640x480"),
+              std::string::npos)
+        << message;
+  }
+  try {
+    FindNamedFile("/no/such/scene.json", "frontend/configs", ".json", "simulation config");
+    FAIL() << "found a file that does not exist";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();  // an absolute path is looked for once
+    EXPECT_EQ(message.rfind("simulation config '/no/such/scene.json' not found (looked for /no/such/scene.json); ", 0), 0u)
+        << message;
   }
 }
 

@@ -1,6 +1,5 @@
 #include "experiments/experiment_driver.h"
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <stdexcept>
@@ -67,12 +66,9 @@ ExperimentRun RunAndWrite(const ExperimentConfig& config, const DriverOptions& o
   const std::string started = UtcNow();
   CheckOutputDir(options.out_dir);
   const nlohmann::json resolved = ResolvedConfigJson(config);  // fails early on bad tracker options
-  const std::string staging = StagingDir(options.out_dir);
   RunOptions run_options = options.run;
   if (options.resume) run_options.completed = CompletedJobs(options.out_dir, config, resolved);
-  std::error_code error;
-  fs::remove_all(staging, error);
-  CreateDirectories(staging);
+  const std::string staging = FreshStagingDir(options.out_dir);  // after the journal is read
   WriteJsonFile(JoinPath(staging, "config.resolved.json"), resolved);
   // The journal of finished jobs, rewritten at most every few seconds (each write is atomic, so
   // an interruption leaves the previous one); the reused jobs at once.
@@ -104,24 +100,11 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
   const auto start = std::chrono::steady_clock::now();
   const std::string started = UtcNow();
   CheckOutputDir(options.out_dir);
-  const fs::path out = fs::weakly_canonical(fs::absolute(options.out_dir));
-  for (const std::string& dir : shard_dirs) {
-    // The swap replaces out_dir and keeps only its raw/shards/: a shard anywhere else in it
-    // (or out_dir itself) would be lost.
-    const fs::path shard = fs::weakly_canonical(fs::absolute(dir));
-    const auto inside = [](const fs::path& path, const fs::path& root) {
-      const fs::path relative = path.lexically_relative(root);
-      return !relative.empty() && *relative.begin() != "..";
-    };
-    if (inside(shard, out) && !inside(shard, out / kShardsDir)) {
-      throw std::runtime_error("--out " + options.out_dir + ": holds the shard " + dir +
-                               " outside raw/shards/; the new results would replace it");
-    }
-  }
+  std::vector<std::pair<std::string, std::string>> shards;
+  for (const std::string& dir : shard_dirs) shards.emplace_back("the shard", dir);
+  RefusePathsInReplacedDirectory("--out", options.out_dir, shards, kShardsDir);
   MergedRun merged = MergeShardOutputs(shard_dirs);
-  const std::string staging = StagingDir(options.out_dir);
-  std::error_code error;
-  fs::remove_all(staging, error);
+  const std::string staging = FreshStagingDir(options.out_dir);
   double experiment_time = 0.0;  // the sum over the shards
   for (const nlohmann::json& shard : merged.shards) experiment_time += shard.value("experiment_time_s", 0.0);
   WriteOutputs(staging, options, merged.config, merged.trials, ResolvedConfigJson(merged.config),
@@ -133,43 +116,6 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
                start);
   ReplaceDirectory(staging, options.out_dir, kShardsDir);
   return merged;
-}
-
-std::string DefaultOutputDir(const std::string& name) {
-  std::error_code error;
-  if (fs::is_directory(SourceDir(), error)) return JoinPath(JoinPath(SourceDir(), "results"), name);
-  return JoinPath("results", name);
-}
-
-std::string FindConfigFile(const std::string& name) {
-  const bool has_suffix = name.size() > 5 && name.substr(name.size() - 5) == ".json";
-  std::string looked, available;
-  const std::string configs = "experiments/configs";
-  for (const std::string& base : {std::string(), configs, JoinPath(SourceDir(), configs)}) {
-    for (const std::string& file : {name, name + ".json"}) {
-      if (has_suffix && file != name) continue;
-      const std::string path = base.empty() ? file : JoinPath(base, file);
-      std::error_code error;
-      if (fs::is_regular_file(path, error)) return path;
-      looked += (looked.empty() ? "" : ", ") + path;
-    }
-  }
-  for (const std::string& c : AvailableConfigs()) available += (available.empty() ? "" : ", ") + c;
-  throw std::runtime_error("config '" + name + "' not found (looked for " + looked + "); available: " +
-                           (available.empty() ? "none found" : available));
-}
-
-std::vector<std::string> AvailableConfigs() {
-  const fs::path root = fs::path(SourceDir()) / "experiments/configs";
-  std::vector<std::string> names;
-  std::error_code error;
-  for (fs::recursive_directory_iterator it(root, error), end; !error && it != end; it.increment(error)) {
-    if (it->is_regular_file(error) && it->path().extension() == ".json") {
-      names.push_back(it->path().lexically_relative(root).replace_extension().generic_string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 void RunPlotScript(const std::string& dir, bool quiet) {

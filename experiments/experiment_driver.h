@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/script_runner.h"
 #include "experiments/experiment_config.h"
 #include "experiments/experiment_output.h"
 #include "experiments/experiment_runner.h"
@@ -37,16 +38,14 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
 
 // The result directory of a config when --out is not given: <source tree>/results/<name> (or
 // ./results/<name> when the source tree is gone).
-std::string DefaultOutputDir(const std::string& name);
+inline std::string DefaultOutputDir(const std::string& name) { return SourceTreePath("results/" + name); }
 
-// Finds a config: `name` as given (relative to the current directory), then in
-// ./experiments/configs/ and <source tree>/experiments/configs/, each with and without ".json".
-// Throws std::runtime_error listing where it looked and the available configs.
-std::string FindConfigFile(const std::string& name);
-
-// The configs of <source tree>/experiments/configs/ by the names FindConfigFile takes, sorted:
-// "ablation", ..., "ci/noise_sweep_ci" (empty when the source tree is gone).
-std::vector<std::string> AvailableConfigs();
+// A config by path or by name in experiments/configs/ ("noise_sweep", "noise_sweep.json",
+// "ci/noise_sweep_ci"), and the names there, sorted (common/script_runner.h).
+inline std::string FindConfigFile(const std::string& name) {
+  return FindNamedFile(name, "experiments/configs", ".json", "config");
+}
+inline std::vector<std::string> AvailableConfigs() { return FileNamesIn("experiments/configs", ".json"); }
 
 // Runs scripts/plot_experiment.py DIR with RunPythonScript (common/script_runner.h). Throws
 // std::runtime_error when the script fails.

@@ -217,7 +217,7 @@ std::vector<TrialResult> ReadRawResults(const std::string& dir, const Experiment
     }
   };
   for_each_row("raw/trials.csv", true, [&](const auto& column, TrialResult& t) {
-    t.seed = std::stoull(column("seed"));
+    t.seed = ParseInteger<std::uint64_t>(column("seed"));
     t.frames = static_cast<int>(ParseIndex(column("n_frames")));
     t.metrics_frame = static_cast<int>(ParseIndex(column("metrics_frame")));
     for (int m = 0; m < kNumTrialMetrics; ++m) t.metrics[m] = ParseDouble(column(TrialMetricName(m)));

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 
+#include "common/csv.h"
 #include "common/machine_info.h"
 #include "common/parallel.h"
 #include "common/random.h"
@@ -171,11 +171,11 @@ std::vector<Job> ExperimentJobs(const ExperimentConfig& config) {
 
 Shard ParseShard(const std::string& text) {
   Shard shard;
-  const char* end = text.data() + text.size();
-  const std::from_chars_result index = std::from_chars(text.data(), end, shard.index);
-  const bool slash = index.ec == std::errc() && index.ptr != end && *index.ptr == '/';
-  const std::from_chars_result count = slash ? std::from_chars(index.ptr + 1, end, shard.count) : index;
-  if (!slash || count.ec != std::errc() || count.ptr != end) {
+  const size_t slash = text.find('/');
+  try {
+    shard.index = ParseInteger<int>(text.substr(0, slash));
+    shard.count = ParseInteger<int>(slash == std::string::npos ? "" : text.substr(slash + 1));
+  } catch (const std::invalid_argument&) {
     throw std::invalid_argument("--shard: expected i/n (e.g. 0/4), got '" + text + "'");
   }
   if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {

@@ -51,10 +51,7 @@ cv::Mat SideBySide(const cv::Mat& left, const cv::Mat& right) {
 }  // namespace
 
 FrontEndPictures::FrontEndPictures(const std::string& dir, const StereoRig& rig, int frames)
-    : dir_(dir), partial_(StagingDir(dir)), rig_(rig), frames_(frames) {
-  fs::remove_all(partial_);
-  CreateDirectories(partial_);
-}
+    : dir_(dir), partial_(FreshStagingDir(dir)), rig_(rig), frames_(frames) {}
 
 void FrontEndPictures::AddFrame(int k, const cv::Mat& left, const cv::Mat& right, const StereoFrontEnd& front_end,
                                 const StereoFrame& frame, const TrackerOutput& output) {

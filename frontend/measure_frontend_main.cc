@@ -323,6 +323,7 @@ int main(int argc, char** argv) {
   std::string only_scene, only_detector;
   int first = 0;
   std::uint64_t seed = 1;
+  std::string seed_text;
   app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
   app.add_option("--step", step, "Detector table: every step-th frame")->check(CLI::Range(1, 100000));
   app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
@@ -332,9 +333,13 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-sequences", skip_sequences, "Only the detectors");
   app.add_option("--scene", only_scene, "Only the scenes whose name contains this (room, corridor, paper)");
   app.add_option("--first", first, "Detector table: the first frame scored (then every --step)")->check(CLI::NonNegativeNumber);
-  app.add_option("--seed", seed, "Simulation seed of every scene (another draw of the scenes, motions and image noise)");
+  // Read as text (ParseSeedOption).
+  app.add_option("--seed", seed_text, "Simulation seed of every scene (another draw of the scenes, motions and image noise)");
   app.add_option("--detector", only_detector, "Detector table: only this detector (lsd, edlines, ...)");
-  if (const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend"); exit_code >= 0) return exit_code;
+  const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend", [&] {
+    if (app.count("--seed") > 0) seed = ParseSeedOption("--seed", seed_text);
+  });
+  if (exit_code >= 0) return exit_code;
   return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
     const FrontEndOptions options = FrontEndOptionsFromJson(ReadOptionsFile(config_path), config_path);

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "common/command_line.h"
+#include "common/csv.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/progress_bar.h"
@@ -37,18 +38,19 @@ std::pair<int, int> ParseFrames(const std::string& text, int size) {
   const size_t colon = text.find(':');
   if (colon == std::string::npos) throw CLI::ValidationError("--frames", "expected A:B, got '" + text + "'");
   const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+  int first = 0, end = size;
   try {
-    const int first = a.empty() ? 0 : std::stoi(a);
-    const int end = b.empty() ? size : std::stoi(b);
-    if (first < 0 || end <= first) throw CLI::ValidationError("--frames", "empty or negative range '" + text + "'");
-    if (first >= size) {
-      throw CLI::ValidationError("--frames", "starts at " + std::to_string(first) + " but the sequence has " +
-                                                 std::to_string(size) + " pairs");
-    }
-    return {first, std::min(end, size)};
-  } catch (const std::logic_error&) {
+    if (!a.empty()) first = slt::ParseInteger<int>(a);
+    if (!b.empty()) end = slt::ParseInteger<int>(b);
+  } catch (const std::invalid_argument&) {
     throw CLI::ValidationError("--frames", "expected A:B with integers, got '" + text + "'");
   }
+  if (first < 0 || end <= first) throw CLI::ValidationError("--frames", "empty or negative range '" + text + "'");
+  if (first >= size) {
+    throw CLI::ValidationError("--frames", "starts at " + std::to_string(first) + " but the sequence has " +
+                                               std::to_string(size) + " pairs");
+  }
+  return {first, std::min(end, size)};
 }
 
 }  // namespace
@@ -80,10 +82,18 @@ int main(int argc, char** argv) {
     const StereoRig& rig = source->rig();
     std::fprintf(stderr, "track_images: %s; frames %d to %d\n", source->Describe().c_str(), first, end - 1);
 
-    CheckOutputsBeforeWork({{"--output", output}, {"--save-observations", observations_path}, {"--log", log_path}},
-                           {path, config_path, tracker_config_path});
-    // The pictures replace --viz DIR whole: not a folder of the user's own files (or the input).
-    if (!viz_dir.empty()) CheckReplaceableDirectory("--viz", viz_dir, FrontEndPictures::kMarkerFile, "track_images");
+    const std::vector<std::pair<std::string, std::string>> inputs = {
+        {"--path", path}, {"--config", config_path}, {"--tracker-config", tracker_config_path}};
+    const std::vector<std::pair<std::string, std::string>> outputs = {
+        {"--output", output}, {"--save-observations", observations_path}, {"--log", log_path}};
+    CheckOutputsBeforeWork(outputs, {path, config_path, tracker_config_path});
+    // The pictures replace --viz DIR whole: not a folder of the user's own files, nor one that
+    // holds an input or another output.
+    if (!viz_dir.empty()) {
+      CheckReplaceableDirectory("--viz", viz_dir, FrontEndPictures::kMarkerFile, "track_images");
+      RefusePathsInReplacedDirectory("--viz", viz_dir, inputs);
+      RefusePathsInReplacedDirectory("--viz", viz_dir, outputs);
+    }
     std::optional<StereoLinesWriter> writer;
     if (!observations_path.empty()) writer.emplace(observations_path, rig);
     std::optional<FrontEndPictures> pictures;

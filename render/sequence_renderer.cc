@@ -106,8 +106,7 @@ cv::Mat SequenceRenderer::Image(int frame, int camera) const {
 void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
                         int threads, const std::function<void(int done, int total)>& progress) {
   namespace fs = std::filesystem;
-  const fs::path final_dir = fs::path(dir) / "mav0", work = StagingDir(final_dir.string());
-  fs::remove_all(work);
+  const fs::path final_dir = fs::path(dir) / "mav0", work = FreshStagingDir(final_dir.string());
   const char* camera_names[2] = {"cam0", "cam1"};
   for (const char* name : camera_names) fs::create_directories(work / name / "data");
   fs::create_directories(work / "state_groundtruth_estimate0");

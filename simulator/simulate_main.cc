@@ -1,6 +1,9 @@
 // simulate: writes one synthetic stereo line sequence (docs/simulation.md).
 //
-//   simulate [CONFIG.json | -] --out DIR [--seed N] [--images [--threads N]]
+//   simulate [CONFIG | -] --out DIR [--seed N] [--images [--threads N]]
+//
+// CONFIG is a path, or a bare name found in frontend/configs/ (the rendered scenes of
+// docs/rendering.md: "room_752x480", "paper_640x480.json").
 //
 // DIR/seq.json              observations, stereo-lines/1 (the rig is the tracker's rig)
 // DIR/gt.tum                ground truth, world_from_cam of the left camera, TUM
@@ -22,6 +25,7 @@
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/machine_info.h"
+#include "common/script_runner.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
 #include "render/sequence_renderer.h"
@@ -50,28 +54,22 @@ int main(int argc, char** argv) {
   CLI::App app{"Simulate a synthetic stereo line sequence (observations and ground truth)."};
   std::string config_path, out_dir, seed_text;
   app.add_option("config", config_path,
-                 "Simulation config, JSON; '-' reads standard input; none gives the paper's protocol");
+                 "Simulation config, JSON: a path, or a name in frontend/configs/ (the rendered scenes); '-' reads "
+                 "standard input; none gives the paper's protocol");
   app.add_option("--out,-o", out_dir, "Output directory (created if missing)")->required();
-  // Read as text: CLI11 would turn "-1" into 2^64 - 1 and saturate out-of-range values.
+  // Read as text (ParseSeedOption).
   app.add_option("--seed", seed_text, "Base seed (0 .. 2^64-1), replacing the config's 'seed'");
   bool images = false;
   int threads = 0;
   app.add_flag("--images", images, "Also render the stereo images (DIR/mav0, EuRoC layout)");
   app.add_option("--threads", threads, "Render threads (default: all cores); the images do not depend on it")
       ->check(CLI::Range(0, 4096));
+  std::string scenes;
+  for (const std::string& name : FileNamesIn("frontend/configs", ".json")) scenes += "\n  " + name;
+  if (!scenes.empty()) app.footer("CONFIG names in frontend/configs/ (docs/rendering.md):" + scenes);
   std::optional<std::uint64_t> seed;
   const int exit_code = ParseCommandLine(app, argc, argv, "simulate", [&] {
-    if (!seed_text.empty()) {
-      std::size_t end = 0;
-      try {
-        seed = std::stoull(seed_text, &end);
-      } catch (const std::exception&) {
-        end = 0;
-      }
-      if (seed_text.find('-') != std::string::npos || end != seed_text.size()) {
-        throw CLI::ValidationError("--seed", "expected an integer in [0, 2^64-1], got '" + seed_text + "'");
-      }
-    }
+    if (!seed_text.empty()) seed = ParseSeedOption("--seed", seed_text);
   });
   if (exit_code >= 0) return exit_code;
 
@@ -82,6 +80,7 @@ int main(int argc, char** argv) {
       where = "<stdin>";
       document = ParseJson(std::cin, where);
     } else if (!config_path.empty()) {
+      config_path = FindNamedFile(config_path, "frontend/configs", ".json", "simulation config");
       where = config_path;
       document = ReadJsonFile(config_path);
     }

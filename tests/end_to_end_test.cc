@@ -212,6 +212,20 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
   EXPECT_TRUE(fs::exists(Path("viz/detections_first_pair.png")));
   EXPECT_TRUE(fs::exists(Path("viz/reprojection_error.png")));
   EXPECT_TRUE(fs::exists(Path("viz/reprojection_000199.png")));
+  // An earlier --viz folder may be replaced, but not with an output of the run inside it: the
+  // replacement would delete it.
+  r = RunCommand(Bin("track_images") + " --path " + Path("run") + " --method trifocal_line_ekf --output " +
+                 Path("viz/traj.tum") + " --viz " + Path("viz"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("--viz " + Path("viz") + ": holds --output " + Path("viz/traj.tum")), std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(Path("viz/reprojection_error.png")));
+  // A frame range is integers and nothing else (the whole text is read).
+  r = RunCommand(Bin("track_images") + " --path " + Path("run") + " --method trifocal_line_ekf --output " +
+                 Path("frames.tum") + " --frames 1x:5");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--frames: expected A:B with integers, got '1x:5'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(Path("frames.tum")));
   const Trajectory from_images = ReadTumTrajectory(images_traj);
   ASSERT_EQ(from_images.size(), 200u);
 
@@ -265,9 +279,9 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
   }
 }
 
-void ExpectOneErrorLine(const std::string& output) {
+void ExpectOneErrorLine(const std::string& output, const std::string& program = "track") {
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
-  EXPECT_EQ(output.rfind("track: error: ", 0), 0u) << output;
+  EXPECT_EQ(output.rfind(program + ": error: ", 0), 0u) << output;
 }
 
 TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
@@ -291,6 +305,31 @@ TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
   r = RunCommand(Bin("track") + " --help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.output.find("--method"), std::string::npos);
+  // simulate takes a rendered scene by name (frontend/configs/) and lists them when it has none.
+  r = RunCommand(Bin("simulate") + " no_such_scene --out " + Path("scene"));
+  EXPECT_EQ(r.exit_code, 1);
+  ExpectOneErrorLine(r.output, "simulate");
+  EXPECT_NE(r.output.find("simulation config 'no_such_scene' not found"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("available: corridor_640x480, paper_640x480, room_752x480, room_ci_640x480\n"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(Path("scene")));
+  r = RunCommand(Bin("simulate") + " --help");
+  EXPECT_NE(r.output.find("CONFIG names in frontend/configs/"), std::string::npos) << r.output;
+  r = RunCommand(Bin("simulate") + " paper_640x480 --out " + Path("scene"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(ReadJsonFile(Path("scene/config.resolved.json"))["scene"]["type"], "paper");
+  // Seeds are decimal numbers in [0, 2^64 - 1] and nothing else (CLI11 alone took -1 as 2^64 - 1).
+  for (const std::string& command : {Bin("simulate") + " --out " + Path("seeded"), Bin("measure_frontend")}) {
+    for (const char* seed : {"-1", "0x10", "1e3", "18446744073709551616"}) {
+      r = RunCommand(command + " --seed " + seed);
+      EXPECT_EQ(r.exit_code, 2) << command << " --seed " << seed << ": " << r.output;
+      EXPECT_NE(r.output.find("--seed: expected an integer in [0, 2^64-1], got '" + std::string(seed) + "'"),
+                std::string::npos)
+          << r.output;
+    }
+  }
+  EXPECT_FALSE(fs::exists(Path("seeded")));
 }
 
 // Outputs that would destroy an input, or that cannot be written, are refused before any work
