@@ -11,6 +11,8 @@
 // DIR/config.resolved.json  the config with every default filled in (and --seed applied)
 // DIR/mav0/...              with --images: the rendered stereo images in EuRoC's ASL layout
 //                           (docs/formats.md, docs/rendering.md)
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
@@ -25,6 +27,7 @@
 #include "common/file_io.h"
 #include "common/json_reader.h"
 #include "common/machine_info.h"
+#include "common/progress_bar.h"
 #include "common/script_runner.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
@@ -102,9 +105,11 @@ int main(int argc, char** argv) {
         // One OpenCV thread per render thread: the frames are the parallel work.
         cv::setNumThreads(1);
         const int workers = threads > 0 ? threads : std::max(1, CpuCores());
-        WriteEurocSequence(out_dir, result, config, workers, [](int done, int total) {
-          std::fprintf(stderr, "\rsimulate: rendering frame %d/%d", done, total);
-          if (done == total) std::fprintf(stderr, "\n");
+        // The progress bar on a terminal only: a log gets the closing line, not a line per frame.
+        ProgressBar bar;
+        const bool show_progress = ::isatty(STDERR_FILENO);
+        WriteEurocSequence(out_dir, result, config, workers, [&](int done, int total) {
+          if (show_progress) bar.Update(static_cast<size_t>(done), static_cast<size_t>(total), " frames rendered");
         });
       }
       WriteJsonFile(outputs[3], SimulationConfigToJson(config));
