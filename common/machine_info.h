@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "common/script_runner.h"  // SourceDir, ShellQuote
+#include "common/source_tree.h"  // SourceDir, ShellQuote
 
 namespace slt {
 

@@ -23,7 +23,7 @@
 #include "common/command_line.h"
 #include "common/file_io.h"
 #include "common/json_reader.h"
-#include "common/script_runner.h"
+#include "common/source_tree.h"
 #include "dataset/trajectory.h"
 #include "evaluation/consistency.h"
 #include "evaluation/metrics.h"

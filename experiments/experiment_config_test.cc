@@ -6,7 +6,7 @@
 
 #include "common/json_reader.h"
 #include "common/random.h"
-#include "common/script_runner.h"
+#include "common/source_tree.h"
 #include "experiments/experiment_driver.h"
 #include "methods/pose_tracker.h"
 

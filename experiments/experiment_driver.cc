@@ -6,7 +6,7 @@
 
 #include "common/file_io.h"
 #include "common/json_reader.h"
-#include "common/script_runner.h"
+#include "common/source_tree.h"
 #include "common/machine_info.h"
 
 namespace slt {

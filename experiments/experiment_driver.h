@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "common/script_runner.h"
+#include "common/source_tree.h"
 #include "experiments/experiment_config.h"
 #include "experiments/experiment_output.h"
 #include "experiments/experiment_runner.h"
@@ -41,13 +41,13 @@ MergedRun MergeAndWrite(const std::vector<std::string>& shard_dirs, const Driver
 inline std::string DefaultOutputDir(const std::string& name) { return SourceTreePath("results/" + name); }
 
 // A config by path or by name in experiments/configs/ ("noise_sweep", "noise_sweep.json",
-// "ci/noise_sweep_ci"), and the names there, sorted (common/script_runner.h).
+// "ci/noise_sweep_ci"), and the names there, sorted (common/source_tree.h).
 inline std::string FindConfigFile(const std::string& name) {
   return FindNamedFile(name, "experiments/configs", ".json", "config");
 }
 inline std::vector<std::string> AvailableConfigs() { return FileNamesIn("experiments/configs", ".json"); }
 
-// Runs scripts/plot_experiment.py DIR with RunPythonScript (common/script_runner.h). Throws
+// Runs scripts/plot_experiment.py DIR with RunPythonScript (common/source_tree.h). Throws
 // std::runtime_error when the script fails.
 void RunPlotScript(const std::string& dir, bool quiet = false);
 

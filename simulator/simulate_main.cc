@@ -28,7 +28,7 @@
 #include "common/json_reader.h"
 #include "common/machine_info.h"
 #include "common/progress_bar.h"
-#include "common/script_runner.h"
+#include "common/source_tree.h"
 #include "dataset/stereo_lines_io.h"
 #include "dataset/trajectory.h"
 #include "render/sequence_renderer.h"

@@ -1,4 +1,4 @@
-#include "common/script_runner.h"
+#include "common/source_tree.h"
 
 #include <gtest/gtest.h>
 
