@@ -47,12 +47,8 @@ Table CsvFileTable(const ExperimentConfig& config, const std::vector<std::string
   return table;
 }
 
-// A whole number >= 0 in an index column.
-size_t ParseIndex(const std::string& text) {
-  const double v = ParseDouble(text);
-  if (!(v >= 0) || v != std::floor(v) || v > 1e15) throw std::runtime_error("expected an index, got '" + text + "'");
-  return static_cast<size_t>(v);
-}
+// A whole number >= 0 in an index column ("not an integer: '<text>'" otherwise).
+size_t ParseIndex(const std::string& text) { return ParseInteger<size_t>(text); }
 
 // The (method, point, trial) a row of a raw file names, checked with its sweep columns against
 // the config.

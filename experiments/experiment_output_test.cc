@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "common/json_reader.h"
 #include "experiments/regression_test_support.h"
@@ -89,15 +90,22 @@ TEST(Output, RawResultsReadBackExactly) {
     ASSERT_EQ(back[i].curve.size(), 5u);
     EXPECT_EQ(back[i].curve[3].rot_err_deg, trials[i].curve[3].rot_err_deg);
   }
-  // A row of another experiment is refused, naming the line.
-  WriteTextFileAtomically(dir + "/raw/trials.csv",
-                          ReadTextFile(dir + "/raw/trials.csv") +
-                              "nobody,0,0,0,1,5,4" + std::string(kNumTrialMetrics + 1, ',') + "true\n");
-  try {
-    ReadRawResults(dir, c);
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("trials.csv:14: method 'nobody' is not in the config"), std::string::npos) << e.what();
+  // A row of another experiment is refused, naming the line; so is an index that is not a whole
+  // number (a trial "1.5", a point "-1").
+  const std::string rows = ReadTextFile(dir + "/raw/trials.csv");
+  const std::string id = c.methods[0].Id();
+  const std::string rest = std::string(kNumTrialMetrics + 1, ',') + "true\n";
+  for (const auto& [row, error] : std::vector<std::pair<std::string, std::string>>{
+           {"nobody,0,0,0,1,5,4" + rest, "trials.csv:14: method 'nobody' is not in the config"},
+           {id + ",0,0,1.5,1,5,4" + rest, "trials.csv:14: not an integer: '1.5'"},
+           {id + ",-1,0,0,1,5,4" + rest, "trials.csv:14: not an integer: '-1'"}}) {
+    WriteTextFileAtomically(dir + "/raw/trials.csv", rows + row);
+    try {
+      ReadRawResults(dir, c);
+      FAIL() << row;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(error), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -270,7 +278,15 @@ TEST(Regression, ExpectedBounds) {
   // Method 1's mean translation error: 0.002 * (1, 2, 3) -> 0.004 at point 0; at point 1 its
   // last trial lost its pose, so 0.002 * (1, 2) -> 0.003.
   const std::string id = c.methods[1].Id();
-  c.expect_bounds = {{id, "trans_err_m", 0.0035}};
+  const auto bound = [&](const std::string& metric, std::optional<double> max, bool percent_of_path = false) {
+    BoundCheck b;
+    b.method = id;
+    b.metric = metric;
+    b.max = max;
+    b.percent_of_path = percent_of_path;
+    return b;
+  };
+  c.expect_bounds = {bound("trans_err_m", 0.0035)};
   RegressionReport report = CheckExpectations(c, rows);
   ASSERT_EQ(report.failures.size(), 1u) << report.table;
   EXPECT_NE(report.failures[0].find("bound is lost at noise.endpoint_px = 0: '" + id + "' trans_err_m mean = 0.004, not <= 0.0035"),
@@ -292,14 +308,14 @@ TEST(Regression, ExpectedBounds) {
   // path (kPathLengthM) is 0.1 kPathLengthM + 1/3 and the ATE 0.1 kAteTransM + 1/3.
   const double ate = 0.1 * kAteTransM + 1.0 / 3.0, path = 0.1 * kPathLengthM + 1.0 / 3.0;
   const double percent = 100.0 * ate / path;
-  c.expect_bounds = {{id, "ate_trans_m", percent * 1.001, true}};
+  c.expect_bounds = {bound("ate_trans_m", percent * 1.001, true)};
   EXPECT_TRUE(CheckExpectations(c, rows).ok()) << CheckExpectations(c, rows).table;
   c.expect_bounds[0].max = percent * 0.999;
   report = CheckExpectations(c, rows);
   ASSERT_EQ(report.failures.size(), 2u) << report.table;
   EXPECT_NE(report.failures[0].find("ate_trans_m mean as % of the path"), std::string::npos) << report.failures[0];
   // A lower bound, alone or with the upper one (a band).
-  c.expect_bounds = {{id, "trans_err_m"}};
+  c.expect_bounds = {bound("trans_err_m", std::nullopt)};
   c.expect_bounds[0].min = 0.0035;
   report = CheckExpectations(c, rows);
   ASSERT_EQ(report.failures.size(), 1u) << report.table;
