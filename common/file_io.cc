@@ -17,6 +17,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// `path` absolute and normalised, links resolved as far as they exist; as written (absolute,
+// normalised) when it cannot be resolved (a component without permission).
+fs::path ResolvedPath(const fs::path& path) {
+  std::error_code error;
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(path), error);
+  return error ? fs::absolute(path).lexically_normal() : resolved;
+}
+
 // Temporary files in flight, for the signal handler: it may only read these pointers and call
 // unlink(), both async-signal-safe. A writer claims a free slot (nullptr) for the lifetime of
 // its temporary name.
@@ -72,7 +80,7 @@ bool SamePath(const std::string& a, const std::string& b) {
     const bool same = fs::equivalent(a, b, error);
     if (!error) return same;
   }
-  return fs::weakly_canonical(fs::absolute(a), error) == fs::weakly_canonical(fs::absolute(b), error);
+  return ResolvedPath(a) == ResolvedPath(b);
 }
 
 void RefuseOutputThatIsInput(const std::string& what, const std::string& output,
@@ -164,14 +172,7 @@ void CheckReplaceableDirectory(const std::string& what, const std::string& dir, 
 void RefusePathsInReplacedDirectory(const std::string& what, const std::string& dir,
                                     const std::vector<std::pair<std::string, std::string>>& paths,
                                     const std::string& kept) {
-  // Links resolved as far as they exist; a path that cannot be resolved (a component without
-  // permission) is taken as written.
-  const auto resolved = [](const fs::path& path) {
-    std::error_code error;
-    const fs::path p = fs::weakly_canonical(fs::absolute(path), error);
-    return error ? fs::absolute(path).lexically_normal() : p;
-  };
-  const fs::path root = resolved(dir);
+  const fs::path root = ResolvedPath(dir);
   const auto within = [&](const fs::path& path) {
     const auto in = [](const fs::path& p, const fs::path& folder) {
       const fs::path relative = p.lexically_relative(folder);
@@ -183,7 +184,7 @@ void RefusePathsInReplacedDirectory(const std::string& what, const std::string& 
     if (path.empty()) continue;
     // Where the file is (an input read through a link) and where a new file of that name lands
     // (an output renamed over a link replaces the link): either inside is refused.
-    const fs::path full = resolved(path), named = resolved(fs::path(path).parent_path()) / fs::path(path).filename();
+    const fs::path full = ResolvedPath(path), named = ResolvedPath(fs::path(path).parent_path()) / fs::path(path).filename();
     if (within(full) || within(named)) {
       throw std::runtime_error(what + " " + dir + ": holds " + flag + " " + path +
                                ", which the run would delete (it replaces the directory whole" +

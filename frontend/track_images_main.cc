@@ -82,8 +82,6 @@ int main(int argc, char** argv) {
     const StereoRig& rig = source->rig();
     std::fprintf(stderr, "track_images: %s; frames %d to %d\n", source->Describe().c_str(), first, end - 1);
 
-    const std::vector<std::pair<std::string, std::string>> inputs = {
-        {"--path", path}, {"--config", config_path}, {"--tracker-config", tracker_config_path}};
     const std::vector<std::pair<std::string, std::string>> outputs = {
         {"--output", output}, {"--save-observations", observations_path}, {"--log", log_path}};
     CheckOutputsBeforeWork(outputs, {path, config_path, tracker_config_path});
@@ -91,8 +89,10 @@ int main(int argc, char** argv) {
     // holds an input or another output.
     if (!viz_dir.empty()) {
       CheckReplaceableDirectory("--viz", viz_dir, FrontEndPictures::kMarkerFile, "track_images");
-      RefusePathsInReplacedDirectory("--viz", viz_dir, inputs);
-      RefusePathsInReplacedDirectory("--viz", viz_dir, outputs);
+      std::vector<std::pair<std::string, std::string>> paths = {
+          {"--path", path}, {"--config", config_path}, {"--tracker-config", tracker_config_path}};
+      paths.insert(paths.end(), outputs.begin(), outputs.end());
+      RefusePathsInReplacedDirectory("--viz", viz_dir, paths);
     }
     std::optional<StereoLinesWriter> writer;
     if (!observations_path.empty()) writer.emplace(observations_path, rig);
