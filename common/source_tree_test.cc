@@ -33,13 +33,13 @@ class ScopedPython {
   std::string old_;
 };
 
-TEST(ScriptRunner, ShellQuoteSurvivesQuotesAndSpaces) {
+TEST(SourceTree, ShellQuoteSurvivesQuotesAndSpaces) {
   EXPECT_EQ(ShellQuote("a b"), "'a b'");
   EXPECT_EQ(ShellQuote("it's"), "'it'\\''s'");
   EXPECT_EQ(ShellQuote(""), "''");
 }
 
-TEST(ScriptRunner, InterpreterFollowsTheEnvironment) {
+TEST(SourceTree, InterpreterFollowsTheEnvironment) {
   {
     ScopedPython python("/opt/my/python3");
     EXPECT_EQ(PythonInterpreter(), "/opt/my/python3");
@@ -48,7 +48,7 @@ TEST(ScriptRunner, InterpreterFollowsTheEnvironment) {
   EXPECT_EQ(PythonInterpreter(), "/usr/bin/python3");
 }
 
-TEST(ScriptRunner, RunsTheScriptOfTheSourceTreeAndReportsItsExitCode) {
+TEST(SourceTree, RunsTheScriptOfTheSourceTreeAndReportsItsExitCode) {
   // /bin/true and /bin/false stand in for the interpreter: the script is found and "run".
   {
     ScopedPython python("/bin/true");

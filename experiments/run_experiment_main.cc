@@ -7,7 +7,6 @@
 // CONFIG is a path, or a bare name found in experiments/configs/ ("noise_sweep",
 // "noise_sweep.json", "ci/noise_sweep_ci"). Errors: one line "run_experiment: error: ..." on
 // stderr, exit 1 (2 for command-line errors).
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -80,8 +79,8 @@ int main(int argc, char** argv) {
   options.command_line.assign(argv, argv + argc);
   options.run.threads = threads;
   options.run.shard = shard;
-  ProgressBar bar;
-  if (!quiet && ::isatty(STDERR_FILENO)) options.run.on_progress = [&bar](size_t done, size_t total) { bar.Update(done, total); };
+  ProgressBar bar(!quiet && StderrIsTerminal());
+  if (bar.shown()) options.run.on_progress = [&bar](size_t done, size_t total) { bar.Update(done, total); };
 
   return RunProgram("run_experiment", [&] {
     std::string summary;

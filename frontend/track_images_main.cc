@@ -15,7 +15,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <unistd.h>
 
 #include "common/command_line.h"
 #include "common/csv.h"
@@ -104,9 +103,8 @@ int main(int argc, char** argv) {
     Trajectory trajectory;
     std::ostringstream log;
     log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms\n";
-    const bool show_progress = progress_forced || ::isatty(STDERR_FILENO);
     RunCounts counts;
-    ProgressBar progress;
+    ProgressBar progress(progress_forced || StderrIsTerminal());
     int detection_frames = 0;
     FrontEndStageTimes steady, detecting;
     int steady_frames = 0;
@@ -137,7 +135,7 @@ int main(int argc, char** argv) {
           << stats.rematched << "," << 1e3 * t.detect << ","
           << 1e3 * t.describe << "," << 1e3 * t.match << "," << 1e3 * t.track << "," << 1e3 * t.filter << ","
           << 1e3 * step.tracker_seconds << "," << 1e3 * read << "\n";
-      if (show_progress) {
+      if (progress.shown()) {
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const int done = k - first + 1;
         progress.Update(static_cast<size_t>(done), static_cast<size_t>(end - first),

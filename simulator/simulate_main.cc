@@ -11,8 +11,6 @@
 // DIR/config.resolved.json  the config with every default filled in (and --seed applied)
 // DIR/mav0/...              with --images: the rendered stereo images in EuRoC's ASL layout
 //                           (docs/formats.md, docs/rendering.md)
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
@@ -107,9 +105,8 @@ int main(int argc, char** argv) {
         const int workers = threads > 0 ? threads : std::max(1, CpuCores());
         // The progress bar on a terminal only: a log gets the closing line, not a line per frame.
         ProgressBar bar;
-        const bool show_progress = ::isatty(STDERR_FILENO);
         WriteEurocSequence(out_dir, result, config, workers, [&](int done, int total) {
-          if (show_progress) bar.Update(static_cast<size_t>(done), static_cast<size_t>(total), " frames rendered");
+          bar.Update(static_cast<size_t>(done), static_cast<size_t>(total), " frames rendered");
         });
       }
       WriteJsonFile(outputs[3], SimulationConfigToJson(config));
