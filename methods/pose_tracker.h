@@ -52,6 +52,7 @@ enum class StatusReason {
   kFirstFrame,          // new reference: the first frame defines the world
   kFewFeaturesLeft,     // new reference: fewer reference features left than min_features
   kFeatureFractionLeft, // new reference: fewer left than min_feature_fraction of the reference's
+                        // (or than refresh_fraction, with refresh_gain times as many in the frame)
   kFewMeasurable,       // lost: fewer than two features matched in both images and measurable
   kFewInsideGate,       // lost: fewer than two measurable features inside the gate (eq. 20)
   kNoUpdate,            // lost: the update found no solution or re-gating left fewer than two

@@ -473,6 +473,56 @@ TEST(WantsNewFeatures, AsksOnceAheadSoThatTheNewReferenceCarriesNewLines) {
   EXPECT_FALSE(tracker->WantsNewFeatures());  // the new reference has all it asked for
 }
 
+// The frame on which `tracker` takes its first new reference pair, fed as an image front end
+// feeds it: lines 0-19 from the first frame, line k-1 lost on frame k, and lines 20-39 only on
+// the frames after the tracker asked (WantsNewFeatures); -1 if none by frame 15. `asked`: frames
+// before the switch that followed a request; `reference_features`: the first reference's
+// measurable lines.
+int FirstSwitchOfAFrontEndFedTracker(PoseTracker& tracker, const SimulatedSequence& sim, int* asked,
+                                     int* reference_features) {
+  tracker.Reset(sim.sequence.rig);
+  bool new_lines = false;
+  *asked = 0;
+  for (int k = 0; k < 16; ++k) {
+    new_lines = new_lines || (k > 0 && tracker.WantsNewFeatures());
+    *asked += k > 0 && tracker.WantsNewFeatures();
+    StereoFrame frame = sim.sequence.frames[k];
+    for (auto* side : {&frame.left, &frame.right}) {
+      side->erase(std::remove_if(side->begin(), side->end(),
+                                 [&](const LineObservation& o) { return o.id < k || (o.id >= 20 && !new_lines); }),
+                  side->end());
+    }
+    const TrackerOutput out = tracker.Track(frame);
+    if (k == 0) *reference_features = out.features_available;
+    if (k > 0 && out.status == TrackingStatus::kNewReference) return k;
+  }
+  return -1;
+}
+
+TEST(WantsNewFeatures, RefreshSwitchesAsSoonAsTheFrameHoldsMoreLines) {
+  // 18 of the 20 lines are measurable (two lie near the epipolar direction); one goes per frame.
+  // filter.refresh_fraction 0.75: under 13.5 (frame 5, 13 left) the tracker asks, once, and the
+  // next frame, which holds the 12 survivors and the new lines (at least refresh_gain 1.5 times
+  // 12), becomes the new reference. Without the refresh the switch waits for half
+  // (min_feature_fraction 0.5: frame 11, 8 left), with one request ahead of it.
+  SimulationConfig config = SimulationConfigFromJson(nlohmann::json::object(), "test");
+  config.seed = 3;
+  const SimulatedSequence sim = Simulate(config);
+  int asked = 0, reference_features = 0;
+  auto refreshing = CreateTracker("trifocal_line_ekf", {{"filter", {{"refresh_fraction", 0.75}, {"refresh_gain", 1.5}}}});
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*refreshing, sim, &asked, &reference_features), 6);
+  EXPECT_EQ(reference_features, 18);
+  EXPECT_EQ(asked, 1);
+  auto plain = CreateTracker("trifocal_line_ekf");
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*plain, sim, &asked, &reference_features), 11);
+  EXPECT_EQ(asked, 1);
+  // A gain the new lines cannot reach (the frames hold under 4 times the survivors) leaves the
+  // switch to the fraction test: the refresh's request (frame 5) and the one ahead (frame 9).
+  auto demanding = CreateTracker("trifocal_line_ekf", {{"filter", {{"refresh_fraction", 0.75}, {"refresh_gain", 4.0}}}});
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*demanding, sim, &asked, &reference_features), 11);
+  EXPECT_EQ(asked, 2);
+}
+
 // filter.adaptive_process_noise (stereo_ekf_tracker.cc, AdaptProcessNoise): Q follows the motion
 // between the floor min_accel_sigma_m and the ceiling accel_sigma_m (docs/long_sequences.md).
 const nlohmann::json kAdaptiveProcessNoise = {{"adaptive_process_noise", true}, {"min_accel_sigma_m", 5e-5}};

@@ -43,6 +43,11 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
           .Field("count_features", &O::count_features,
                  {{FeatureCount::kMeasurable, "measurable"}, {FeatureCount::kGated, "gated"}},
                  "remaining features: measurable, or also inside the gate (the paper's)")
+          .Field("refresh_fraction", &O::refresh_fraction, InRange(0.0, 1.0),
+                 "below this fraction of the reference's features, ask for new ones and switch once "
+                 "refresh_gain times as many are in the frame (image input; 0 = off)")
+          .Field("refresh_gain", &O::refresh_gain, AtLeast(1.0),
+                 "a refresh switches when the frame holds this many times the remaining features")
           .Field("report_degraded", &O::report_degraded,
                  "status 'degraded' for a measured frame the tracker cannot vouch for")
           .Check("min_accel_sigma_m", [](const O& o) {

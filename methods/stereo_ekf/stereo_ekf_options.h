@@ -93,7 +93,16 @@ struct StereoEkfOptions {
   int min_features = 6;
   double min_feature_fraction = 0.5;
   FeatureCount count_features = FeatureCount::kMeasurable;
-
+  // Refresh (for features from an image front end; 0 = off): when fewer than refresh_fraction of
+  // the reference's features remain, ask the front end once for new ones (WantsNewFeatures), and
+  // take the current pair as the new reference as soon as it holds at least refresh_gain times
+  // the remaining ones. A front end loses tracks long before their lines leave the view and
+  // detects only when asked, so without it a tracker runs on the dwindling survivors of its
+  // reference while the view holds several times as many lines (docs/frontend.md). Off by
+  // default: where every visible feature is observed on every frame (the synthetic protocol) it
+  // only adds new reference pairs, each of which chains a pose error.
+  double refresh_fraction = 0.0;
+  double refresh_gain = 1.5;
 
   // Status kDegraded (methods/pose_tracker.h) for a frame whose update the tracker cannot vouch
   // for: the posterior cost above its chi-square bound (the measurements disagree with each other

@@ -26,7 +26,7 @@ TEST(StereoEkfOptions, JsonRoundTripKeepsEveryField) {
   changed["state"] = "velocity";
   changed["integration"] = "first_order";
   changed["count_features"] = "gated";
-  ASSERT_EQ(changed.size(), 24u) << "a field was added: extend this test if it needs a special value";
+  ASSERT_EQ(changed.size(), 26u) << "a field was added: extend this test if it needs a special value";
   for (const auto& [key, value] : changed.items()) EXPECT_NE(value, defaults[key]) << key;
 
   StereoEkfOptions read;
@@ -51,6 +51,10 @@ TEST(StereoEkfOptions, CheckNamesTheBadKey) {
   StereoEkfOptions too_few;
   too_few.min_features = 1;
   EXPECT_THROW(too_few.Check(), ConfigError);
+  // A refresh that would switch to a pair holding fewer features than the reference has left.
+  StereoEkfOptions shrinking;
+  shrinking.refresh_gain = 0.5;
+  EXPECT_THROW(shrinking.Check(), ConfigError);
   // The adapted process noise's floor above its ceiling: an error only when it is adapted.
   StereoEkfOptions inverted;
   inverted.min_accel_sigma_m = 2.0 * inverted.accel_sigma_m;

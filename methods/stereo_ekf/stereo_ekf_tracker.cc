@@ -103,7 +103,7 @@ TrackerOutput StereoEkfTracker::Start(const StereoFrame& frame) {
   reported_widening_.setZero();
   reference_features_ = remaining_before_ = model_->SetReference(frame);
   if (consider_) consider_->Reset(*model_);
-  wants_new_features_ = asked_ahead_ = false;
+  wants_new_features_ = asked_ahead_ = asked_refresh_ = false;
   TrackerOutput out;
   out.status = TrackingStatus::kNewReference;
   out.reason = StatusReason::kFirstFrame;
@@ -511,8 +511,15 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   remaining_before_ = remaining;
   const bool ask_ahead = !asked_ahead_ && below(remaining - lost - 1);
   asked_ahead_ = asked_ahead_ || ask_ahead;
-  wants_new_features_ = too_few || ask_ahead;
-  if (!too_few || model_->CurrentStereoFeatures() <= remaining) return;
+  // Refresh: ask once when under refresh_fraction of the reference's features, then switch as
+  // soon as the frame holds refresh_gain times the remaining ones.
+  const bool refresh = remaining < options_.refresh_fraction * reference_features_;
+  const bool ask_refresh = refresh && !asked_refresh_;
+  asked_refresh_ = asked_refresh_ || ask_refresh;
+  wants_new_features_ = too_few || ask_ahead || ask_refresh;
+  const int current = model_->CurrentStereoFeatures();
+  const bool refresh_now = refresh && current >= options_.refresh_gain * remaining;
+  if (!(too_few || refresh_now) || current <= remaining) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = state->out.cam_from_world;
   ref_from_world_covariance_ = state->out.covariance;
@@ -521,7 +528,7 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   reported_widening_.setZero();
   reference_features_ = remaining_before_ = model_->SetReference(frame);
   if (consider_) consider_->Reset(*model_);
-  wants_new_features_ = asked_ahead_ = false;
+  wants_new_features_ = asked_ahead_ = asked_refresh_ = false;
   ++counters_.new_references;
   // On a frame without an update (possible when counting the lines inside the gate, the
   // paper's reading) the status stays kLost: the pose is still only a prediction.

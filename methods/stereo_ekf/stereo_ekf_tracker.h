@@ -55,7 +55,8 @@ class StereoEkfTracker : public PoseTracker {
   // next frame to keep it (the test of NewReferencePair without its "the current frame has
   // more features" part): the next frame then takes a new reference pair if it brings new
   // lines. (When the count falls below the threshold between two frames, the new reference
-  // comes one frame later.)
+  // comes one frame later.) Also once per reference when fewer than filter.refresh_fraction of
+  // its features remain (the refresh, stereo_ekf_options.h).
   bool WantsNewFeatures() const override { return !started_ || wants_new_features_; }
   // The motion model's prediction (eq. 18) of the next frame's pose, M_t+1|t = Exp(xi) M_t,
   // chained to the world: once a frame has been measured (before that the velocity is the
@@ -149,6 +150,7 @@ class StereoEkfTracker : public PoseTracker {
   int reference_features_ = 0;
   int remaining_before_ = 0;  // the reference's features counted on the last frame
   bool asked_ahead_ = false;  // new features were asked for ahead since the last reference
+  bool asked_refresh_ = false;  // new features were asked for by the refresh since the last reference
   // Added to the reported pose covariance (FeatureModel::RefinedCovarianceUse::kReport) until
   // the next solve or a new reference pair; zero otherwise.
   Matrix6d reported_widening_ = Matrix6d::Zero();
