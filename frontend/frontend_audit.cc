@@ -113,6 +113,17 @@ nlohmann::json RenderedPaperConfig(int frames) {
           {"observation", kVisibleTruth}};
 }
 
+nlohmann::json PaperSceneOptions(const StereoRig& rig) {
+  const double fx_baseline = rig.left.fx * rig.right_from_left.translation.norm();
+  return {{"matching",
+           {{"min_disparity_px", std::floor(fx_baseline / 1.0)},
+            {"max_disparity_px", std::ceil(fx_baseline / 0.2)},
+            {"min_union_overlap", 0.5},
+            {"max_previous_px", 1.0},
+            {"previous_pairs", 3}}},
+          {"tracking", {{"extend_max_px", 20.0}, {"snap_inlier_px", 0.3}}}};
+}
+
 std::vector<Line3d> WithBarSecondEdges(const SimulatedSequence& sequence) {
   std::vector<Line3d> lines = sequence.lines;
   const auto is_vertex = [](const Surface& s, const Eigen::Vector3d& x) {

@@ -70,6 +70,17 @@ nlohmann::json RenderedRoomConfig(int frames, bool euroc_size);
 nlohmann::json RenderedCorridorConfig(int frames);
 nlohmann::json RenderedPaperConfig(int frames);
 
+// The paper scene's front-end options (a JSON merge patch over the defaults, for `rig`: the
+// rendered paper scene's). Its bars float 0.26-0.70 m from the camera over the 200
+// frames (the ground truth's visible segments); with a margin, 0.2-1.0 m is the disparity range
+// fx b / z of the rig, given to the matcher as a stereo matcher is given its range (OpenCV's
+// minDisparity, numDisparities). Its bars look alike (MSLD and NCC do not tell them apart):
+// the matches are verified by their row extents and by the three pairs before (with the
+// tracker's measured motion). Its edges are sharp (sub-pixel residuals of 0.05-0.1 px) and
+// cross each other: a tracked edge keeps only the edge points within 0.3 px of its line (not
+// those of a crossing bar's edge) and grows back along its edge (docs/frontend.md).
+nlohmann::json PaperSceneOptions(const StereoRig& rig);
+
 // The scene's lines for judging a front end. On the paper scene each segment is one long edge of
 // a bar 4 mm wide (simulator/scene.cc): the images show its second long edge too, which the
 // simulator does not list. The lines of `sequence` followed by the edge opposite each listed

@@ -8,6 +8,7 @@
 
 #include "common/json_reader.h"
 #include "evaluation/metrics.h"
+#include "frontend/frontend_audit.h"
 #include "frontend/image_sequence.h"
 #include "frontend/rendered_pair.h"
 
@@ -71,23 +72,16 @@ TEST(ImageTracker, NewReferencesOfARenderedRoomCarryNewLines) {
 
 TEST(ImageTracker, RefreshKeepsThePaperSceneTrackerOnMoreLines) {
   // The paper scene in measure_frontend's second draw, with its front-end options
-  // (PaperSceneOptions there). The front end loses a line every few frames, and by default
-  // trifocal_line_ekf waits for half of its reference to go: from frame 74 on it runs on 8-10
-  // lines while the images hold 30 or more. With the refresh (filter.refresh_fraction 0.75,
+  // (PaperSceneOptions, frontend_audit.h). The front end loses a line every few frames, and by
+  // default trifocal_line_ekf waits for half of its reference to go: from frame 74 on it runs on
+  // 8-10 lines while the images hold 30 or more. With the refresh (filter.refresh_fraction 0.75,
   // refresh_gain 2) it asks for new lines at three quarters and switches to the pair that
   // brings them (docs/frontend.md, twelfth pass). Measured: 9.0 and 11.5 lines in the update per
   // frame.
   nlohmann::json config = RenderedPaperConfig(200);
   config["seed"] = 2;
   const RenderedSequence paper(config);
-  FrontEndOptions options;
-  options.matching.min_disparity_px = 84.0;
-  options.matching.max_disparity_px = 425.0;
-  options.matching.min_union_overlap = 0.5;
-  options.matching.max_previous_px = 1.0;
-  options.matching.previous_pairs = 3;
-  options.tracking.extend_max_px = 20.0;
-  options.tracking.snap_inlier_px = 0.3;
+  const FrontEndOptions options = FrontEndOptionsFromJson(PaperSceneOptions(paper.rig()), "paper scene");
   const auto lines_per_frame = [&](const nlohmann::json& tracker_options) {
     StereoFrontEnd front_end(options, paper.rig());
     const std::unique_ptr<PoseTracker> tracker = CreateTracker("trifocal_line_ekf", tracker_options);

@@ -71,25 +71,6 @@ struct MeasuredScene {
   nlohmann::json options = nlohmann::json::object();
 };
 
-// The paper scene's front-end options. Its bars float 0.26-0.70 m from the camera over the 200
-// frames (the ground truth's visible segments); with a margin, 0.2-1.0 m is the disparity range
-// fx b / z of the rig, given to the matcher as a stereo matcher is given its range (OpenCV's
-// minDisparity, numDisparities). Its bars look alike (MSLD and NCC do not tell them apart):
-// the matches are verified by their row extents and by the three pairs before (with the
-// tracker's measured motion). Its edges are sharp (sub-pixel residuals of 0.05-0.1 px) and
-// cross each other: a tracked edge keeps only the edge points within 0.3 px of its line (not
-// those of a crossing bar's edge) and grows back along its edge (docs/frontend.md).
-nlohmann::json PaperSceneOptions(const StereoRig& rig) {
-  const double fx_baseline = rig.left.fx * rig.right_from_left.translation.norm();
-  return {{"matching",
-           {{"min_disparity_px", std::floor(fx_baseline / 1.0)},
-            {"max_disparity_px", std::ceil(fx_baseline / 0.2)},
-            {"min_union_overlap", 0.5},
-            {"max_previous_px", 1.0},
-            {"previous_pairs", 3}}},
-          {"tracking", {{"extend_max_px", 20.0}, {"snap_inlier_px", 0.3}}}};
-}
-
 // A deque: each scene's renderer refers to its own sequence, which must not move.
 std::deque<MeasuredScene> Scenes(int frames, const std::string& only_scene, std::uint64_t seed) {
   std::vector<std::pair<std::string, nlohmann::json>> all = {

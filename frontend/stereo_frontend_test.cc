@@ -134,7 +134,7 @@ TEST(StereoFrontEnd, WithAMeasuredMotionNewLinesAreMatchedInThePreviousPairAndCh
     options.detection.detector = LineDetectorType::kLsd;  // the detections measured below
     options.matching.max_previous_px = max_previous_px;
     options.matching.previous_pairs = 2;
-    // The paper scene's range and row check (measure_frontend's PaperSceneOptions).
+    // The paper scene's range and row check (PaperSceneOptions, frontend_audit.h).
     options.matching.min_disparity_px = 84.0;
     options.matching.max_disparity_px = 425.0;
     options.matching.min_union_overlap = 0.5;

@@ -441,6 +441,34 @@ TEST(PredictNext, IsTheMotionModelsPredictionChainedToTheWorld) {
   EXPECT_LT(predicted_error, still_error);
 }
 
+// The frame on which `tracker` takes its first new reference pair, fed as an image front end
+// feeds it: lines 0-19 from the first frame, `lost_per_frame` of them lost per frame (the ids
+// below lost_per_frame * k are gone on frame k), and lines 20-39 only on the frames after the
+// tracker asked (WantsNewFeatures); -1 if none by frame 15. `asked`: frames up to the switch
+// that followed a request; `reference_features`: the first reference's measurable lines.
+int FirstSwitchOfAFrontEndFedTracker(PoseTracker& tracker, const SimulatedSequence& sim, int lost_per_frame,
+                                     int* asked, int* reference_features) {
+  tracker.Reset(sim.sequence.rig);
+  bool new_lines = false;
+  *asked = 0;
+  for (int k = 0; k < 16; ++k) {
+    new_lines = new_lines || (k > 0 && tracker.WantsNewFeatures());
+    *asked += k > 0 && tracker.WantsNewFeatures();
+    StereoFrame frame = sim.sequence.frames[k];
+    for (auto* side : {&frame.left, &frame.right}) {
+      side->erase(std::remove_if(side->begin(), side->end(),
+                                 [&](const LineObservation& o) {
+                                   return o.id < lost_per_frame * k || (o.id >= 20 && !new_lines);
+                                 }),
+                  side->end());
+    }
+    const TrackerOutput out = tracker.Track(frame);
+    if (k == 0) *reference_features = out.features_available;
+    if (k > 0 && out.status == TrackingStatus::kNewReference) return k;
+  }
+  return -1;
+}
+
 TEST(WantsNewFeatures, AsksOnceAheadSoThatTheNewReferenceCarriesNewLines) {
   // An image front end as the tracker sees it (frontend/image_tracking.h): lines 0-19 from the
   // first frame, two of them lost per frame, and lines 20-39 only on the frames after the tracker
@@ -451,52 +479,10 @@ TEST(WantsNewFeatures, AsksOnceAheadSoThatTheNewReferenceCarriesNewLines) {
   config.seed = 3;
   const SimulatedSequence sim = Simulate(config);
   auto tracker = CreateTracker("trifocal_line_ekf");
-  tracker->Reset(sim.sequence.rig);
-  bool new_lines = false;
-  int asked = 0, switched_at = -1;
-  for (int k = 0; k < 12 && switched_at < 0; ++k) {
-    new_lines = new_lines || (k > 0 && tracker->WantsNewFeatures());
-    asked += k > 0 && tracker->WantsNewFeatures();
-    StereoFrame frame = sim.sequence.frames[k];
-    for (auto* side : {&frame.left, &frame.right}) {
-      side->erase(std::remove_if(side->begin(), side->end(),
-                                 [&](const LineObservation& o) {
-                                   return o.id < 2 * k || (o.id >= 20 && !new_lines);
-                                 }),
-                  side->end());
-    }
-    const TrackerOutput out = tracker->Track(frame);
-    if (k > 0 && out.status == TrackingStatus::kNewReference) switched_at = k;
-  }
-  EXPECT_EQ(switched_at, 6);
+  int asked = 0, reference_features = 0;
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*tracker, sim, 2, &asked, &reference_features), 6);
   EXPECT_EQ(asked, 1);
   EXPECT_FALSE(tracker->WantsNewFeatures());  // the new reference has all it asked for
-}
-
-// The frame on which `tracker` takes its first new reference pair, fed as an image front end
-// feeds it: lines 0-19 from the first frame, line k-1 lost on frame k, and lines 20-39 only on
-// the frames after the tracker asked (WantsNewFeatures); -1 if none by frame 15. `asked`: frames
-// before the switch that followed a request; `reference_features`: the first reference's
-// measurable lines.
-int FirstSwitchOfAFrontEndFedTracker(PoseTracker& tracker, const SimulatedSequence& sim, int* asked,
-                                     int* reference_features) {
-  tracker.Reset(sim.sequence.rig);
-  bool new_lines = false;
-  *asked = 0;
-  for (int k = 0; k < 16; ++k) {
-    new_lines = new_lines || (k > 0 && tracker.WantsNewFeatures());
-    *asked += k > 0 && tracker.WantsNewFeatures();
-    StereoFrame frame = sim.sequence.frames[k];
-    for (auto* side : {&frame.left, &frame.right}) {
-      side->erase(std::remove_if(side->begin(), side->end(),
-                                 [&](const LineObservation& o) { return o.id < k || (o.id >= 20 && !new_lines); }),
-                  side->end());
-    }
-    const TrackerOutput out = tracker.Track(frame);
-    if (k == 0) *reference_features = out.features_available;
-    if (k > 0 && out.status == TrackingStatus::kNewReference) return k;
-  }
-  return -1;
 }
 
 TEST(WantsNewFeatures, RefreshSwitchesAsSoonAsTheFrameHoldsMoreLines) {
@@ -510,16 +496,16 @@ TEST(WantsNewFeatures, RefreshSwitchesAsSoonAsTheFrameHoldsMoreLines) {
   const SimulatedSequence sim = Simulate(config);
   int asked = 0, reference_features = 0;
   auto refreshing = CreateTracker("trifocal_line_ekf", {{"filter", {{"refresh_fraction", 0.75}, {"refresh_gain", 1.5}}}});
-  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*refreshing, sim, &asked, &reference_features), 6);
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*refreshing, sim, 1, &asked, &reference_features), 6);
   EXPECT_EQ(reference_features, 18);
   EXPECT_EQ(asked, 1);
   auto plain = CreateTracker("trifocal_line_ekf");
-  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*plain, sim, &asked, &reference_features), 11);
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*plain, sim, 1, &asked, &reference_features), 11);
   EXPECT_EQ(asked, 1);
   // A gain the new lines cannot reach (the frames hold under 4 times the survivors) leaves the
   // switch to the fraction test: the refresh's request (frame 5) and the one ahead (frame 9).
   auto demanding = CreateTracker("trifocal_line_ekf", {{"filter", {{"refresh_fraction", 0.75}, {"refresh_gain", 4.0}}}});
-  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*demanding, sim, &asked, &reference_features), 11);
+  EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*demanding, sim, 1, &asked, &reference_features), 11);
   EXPECT_EQ(asked, 2);
 }
 
