@@ -163,7 +163,8 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
     const Segment2d& r = tracked_[1][i];
     const bool consistent =
         ok_[0][i] && ok_[1][i] &&  // lost in one image: dropped in both
-        geometry.BeamOverlap(l, r, epipolar_sine, options_.matching.epipolar_distance_px) >=
+        geometry.BeamOverlap(l, r, epipolar_sine, options_.matching.epipolar_distance_px,
+                             StereoGeometry::OverlapOf::kShorter, StereoGeometry::AlongEpipolar::kSameExtent) >=
             options_.tracking.min_stereo_overlap &&
         geometry.DisparityInRange(l, r, options_.matching.min_disparity_px, options_.matching.max_disparity_px);
     if (!consistent) {

@@ -14,6 +14,19 @@ namespace {
 
 Eigen::Vector3d H(const Eigen::Vector2d& p) { return {p.x(), p.y(), 1.0}; }
 
+// |sine| of the angle between a segment and the epipolar line through its midpoint (the line
+// through the image's epipole).
+double SineToEpipolarLine(const Segment2d& segment, const Eigen::Vector3d& epipole) {
+  const Eigen::Vector2d a = segment.head<2>(), b = segment.tail<2>();
+  const Eigen::Vector3d epipolar = epipole.cross(H(0.5 * (a + b)));
+  const Eigen::Vector2d dir = (b - a).normalized();
+  const double norm = epipolar.head<2>().norm();
+  if (norm == 0.0) return 1.0;
+  // The line's normal is (a, b): the sine of the angle between the segment and the line is
+  // the cosine between the segment and the normal.
+  return std::abs(dir.dot(epipolar.head<2>()) / norm);
+}
+
 }  // namespace
 
 StereoGeometry::StereoGeometry(const StereoRig& rig) {
@@ -23,35 +36,47 @@ StereoGeometry::StereoGeometry(const StereoRig& rig) {
   tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
   f_ = rig.right.K().inverse().transpose() * tx * r * rig.left.K().inverse();
   f_ /= f_.norm();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f_, Eigen::ComputeFullV);
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f_, Eigen::ComputeFullU | Eigen::ComputeFullV);
   left_epipole_ = svd.matrixV().col(2);
+  right_epipole_ = svd.matrixU().col(2);
   const double b = t.norm();
   rectified_ = (r - Eigen::Matrix3d::Identity()).norm() < 1e-9 && std::abs(t.y()) < 1e-9 * b &&
                std::abs(t.z()) < 1e-9 * b && t.x() < 0 && std::abs(rig.left.fy - rig.right.fy) < 1e-9 * rig.left.fy &&
                std::abs(rig.left.cy - rig.right.cy) < 1e-9;
 }
 
-double StereoGeometry::EpipolarSine(const Segment2d& left) const {
-  const Eigen::Vector2d a = left.head<2>(), b = left.tail<2>();
-  const Eigen::Vector3d epipolar = left_epipole_.cross(H(0.5 * (a + b)));  // the left epipolar line
-  const Eigen::Vector2d dir = (b - a).normalized();
-  const double norm = epipolar.head<2>().norm();
-  if (norm == 0.0) return 1.0;
-  // The line's normal is (a, b): the sine of the angle between the segment and the line is
-  // the cosine between the segment and the normal.
-  return std::abs(dir.dot(epipolar.head<2>()) / norm);
-}
+double StereoGeometry::EpipolarSine(const Segment2d& left) const { return SineToEpipolarLine(left, left_epipole_); }
 
 double StereoGeometry::BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine,
-                                   double epipolar_distance_px, OverlapOf of) const {
+                                   double epipolar_distance_px, OverlapOf of, AlongEpipolar along) const {
   const Eigen::Vector2d x = left.head<2>(), y = left.tail<2>();
   const double length = (y - x).norm();
-  if (EpipolarSine(left) < epipolar_sine) {
+  if (EpipolarSine(left) < epipolar_sine && along == AlongEpipolar::kOnMidpointLine) {
     const Eigen::Vector3d l = f_ * H(0.5 * (x + y));
     const double n = l.head<2>().norm();
     if (n == 0.0) return 0.0;
     const double d0 = std::abs(l.dot(H(right.head<2>()))) / n, d1 = std::abs(l.dot(H(right.tail<2>()))) / n;
     return d0 <= epipolar_distance_px && d1 <= epipolar_distance_px ? 1.0 : 0.0;
+  }
+  if (EpipolarSine(left) < epipolar_sine) {
+    // Across the beam: s(p) = signed distance of a right point from the epipolar line of x
+    // (the row difference in a rectified rig). The left segment spans [0, w] in s (w: from the
+    // epipolar line of x to that of y, which nearly coincide, so F orients them alike), the
+    // right one [s(x'), s(y')]; the shorter extent must lie within the longer one widened by
+    // epipolar_distance_px (one end hidden in one image shortens that extent). A 3-D line whose
+    // left image is near an epipolar line lies near an epipolar plane, so its right image is
+    // near one too: a right segment steeper than twice the left's bound is another line.
+    if (SineToEpipolarLine(right, right_epipole_) >= 2.0 * epipolar_sine) return 0.0;
+    const Eigen::Vector3d lx = f_ * H(x), ly = f_ * H(y);
+    const double nx = lx.head<2>().norm(), ny = ly.head<2>().norm();
+    if (nx == 0.0 || ny == 0.0) return 0.0;
+    const Eigen::Vector3d a = H(right.head<2>()), b = H(right.tail<2>());
+    const double sa = lx.dot(a) / nx, sb = lx.dot(b) / nx;
+    const double w = 0.5 * (sa - ly.dot(a) / ny + sb - ly.dot(b) / ny);
+    const double l0 = std::min(0.0, w), l1 = std::max(0.0, w), r0 = std::min(sa, sb), r1 = std::max(sa, sb);
+    const double d = epipolar_distance_px;
+    const bool inside = l1 - l0 <= r1 - r0 ? (l0 >= r0 - d && l1 <= r1 + d) : (r0 >= l0 - d && r1 <= l1 + d);
+    return inside ? 1.0 : 0.0;
   }
   const Eigen::Vector3d line = H(x).cross(H(y));
   const Eigen::Vector2d d = (y - x) / length;

@@ -14,7 +14,9 @@
 // rectified rigs (where t is the row). Lines within epipolar_angle_deg of the epipolar
 // direction lie (nearly) in an epipolar plane, where the beam degenerates: they are candidates
 // when both right endpoints lie within epipolar_distance_px of the epipolar line of the left
-// midpoint. With a rectified rig the disparity u_left - u_right must be in
+// midpoint. A tracked pair (known to be one line) of such lines stays consistent by a test that
+// admits a line a few degrees off the rows, which spans a few of them (kSameExtent below). With
+// a rectified rig the disparity u_left - u_right must be in
 // [min_disparity_px, max_disparity_px]; the two segments must point the same way.
 //
 // Cross-correlation: grey levels in a band of +-ncc_half_width_px across each segment, at
@@ -53,11 +55,22 @@ class StereoGeometry {
 
   // Beam overlap (see above) of two segments as a fraction of the shorter (kShorter) or of the
   // union of the two extents (kUnion: 1 only when they cover the same part of the beam), in
-  // [0, 1]; for segments along the epipolar direction, 1 when the right one lies on the left
-  // one's epipolar line within `epipolar_distance_px`, else 0.
+  // [0, 1]. For a left segment within `epipolar_sine` of the epipolar direction, 1 or 0 by
+  // `along`:
+  //   kOnMidpointLine: both right endpoints within `epipolar_distance_px` of the epipolar line
+  //     of the left midpoint (matching: a line spanning more than a few rows is no candidate);
+  //   kSameExtent: the right segment within twice that angle of its own epipolar direction (the
+  //     3-D line is near an epipolar plane, so both images are near epipolar lines) and, across
+  //     the beam (s = the distance from the epipolar line of the left segment's first endpoint;
+  //     the row in a rectified rig), the shorter of the two extents within the longer one
+  //     widened by `epipolar_distance_px` each side (one end hidden in one image shortens
+  //     that extent). For a tracked pair, whose lines turn across the 5-deg bound as the camera
+  //     moves and span several rows at 4 deg over 70 px (docs/frontend.md, thirteenth pass).
   enum class OverlapOf { kShorter, kUnion };
+  enum class AlongEpipolar { kOnMidpointLine, kSameExtent };
   double BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine, double epipolar_distance_px,
-                     OverlapOf of = OverlapOf::kShorter) const;
+                     OverlapOf of = OverlapOf::kShorter,
+                     AlongEpipolar along = AlongEpipolar::kOnMidpointLine) const;
   // Whether the pair is in the disparity range at both ends of their common rows (always true
   // for a rig that is not rectified).
   bool DisparityInRange(const Segment2d& left, const Segment2d& right, double min_px, double max_px) const;
@@ -69,7 +82,8 @@ class StereoGeometry {
 
  private:
   Eigen::Matrix3d f_;
-  Eigen::Vector3d left_epipole_;  // F e = 0
+  Eigen::Vector3d left_epipole_;   // F e = 0
+  Eigen::Vector3d right_epipole_;  // e'^T F = 0
   bool rectified_ = false;
 };
 

@@ -202,5 +202,40 @@ TEST(StereoGeometry, BeamOverlapOfRectifiedSegments) {
   EXPECT_FALSE(geometry.DisparityInRange(left, right, 20, 70));
 }
 
+TEST(StereoGeometry, BeamOfALineAFewDegreesOffTheEpipolarDirection) {
+  // A 3-D line 4 deg off the rows, 2-3 m in front of the default rig: it spans 5 rows of each
+  // image, which the matcher's test against the epipolar line of the left midpoint (within
+  // 1.5 px) refuses; a tracked pair's test accepts the segments of the same line in the two
+  // images, which span the same rows.
+  using Along = StereoGeometry::AlongEpipolar;
+  using Of = StereoGeometry::OverlapOf;
+  const StereoRig rig;
+  const StereoGeometry geometry(rig);
+  const double sine = std::sin(5.0 * M_PI / 180.0);
+  const Eigen::Vector3d p(-0.3, 0.2, 2.0), q(0.4, 0.249, 3.0);
+  const Eigen::Vector2d pl = rig.left.Project(p), ql = rig.left.Project(q);
+  const Eigen::Vector2d pr = rig.right.Project(rig.right_from_left * p), qr = rig.right.Project(rig.right_from_left * q);
+  const Segment2d left(pl.x(), pl.y(), ql.x(), ql.y()), right(pr.x(), pr.y(), qr.x(), qr.y());
+  ASSERT_LT(geometry.EpipolarSine(left), sine);
+  ASSERT_GT(std::abs(ql.y() - pl.y()), 4.0) << "the line must span rows";
+  EXPECT_EQ(geometry.BeamOverlap(left, right, sine, 1.5), 0.0);
+  EXPECT_EQ(geometry.BeamOverlap(left, right, sine, 1.5, Of::kShorter, Along::kSameExtent), 1.0);
+  EXPECT_EQ(geometry.BeamOverlap(left, right, sine, 1.5, Of::kUnion, Along::kSameExtent), 1.0);
+  // One end hidden in the left image: the shorter extent still lies within the longer one.
+  const Eigen::Vector2d mid = 0.5 * (pl + ql);
+  EXPECT_EQ(geometry.BeamOverlap(Segment2d(pl.x(), pl.y(), mid.x(), mid.y()), right, sine, 1.5, Of::kShorter,
+                                 Along::kSameExtent),
+            1.0);
+  // The same right segment 3 rows lower (another line) is outside the beam widened by 1.5 px.
+  const Segment2d lower(pr.x(), pr.y() + 3.0, qr.x(), qr.y() + 3.0);
+  EXPECT_EQ(geometry.BeamOverlap(left, lower, sine, 1.5, Of::kShorter, Along::kSameExtent), 0.0);
+  // A horizontal left segment's row lies within the rows of a vertical right one (such a wrong
+  // match appeared on the room's frame 0 when the matcher used this test): a steep right
+  // segment is not the image of a line near an epipolar plane.
+  EXPECT_EQ(geometry.BeamOverlap(Segment2d(422, 125, 251, 125), Segment2d(225, 126, 225, 250), sine, 1.5,
+                                 Of::kShorter, Along::kSameExtent),
+            0.0);
+}
+
 }  // namespace
 }  // namespace slt
