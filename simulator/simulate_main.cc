@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   if (!scenes.empty()) app.footer("CONFIG names in frontend/configs/ (docs/rendering.md):" + scenes);
   std::optional<std::uint64_t> seed;
   const int exit_code = ParseCommandLine(app, argc, argv, "simulate", [&] {
-    if (!seed_text.empty()) seed = ParseSeedOption("--seed", seed_text);
+    if (app.count("--seed") > 0) seed = ParseSeedOption("--seed", seed_text);
   });
   if (exit_code >= 0) return exit_code;
 

@@ -321,8 +321,8 @@ TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
   EXPECT_EQ(ReadJsonFile(Path("scene/config.resolved.json"))["scene"]["type"], "paper");
   // Seeds are decimal numbers in [0, 2^64 - 1] and nothing else (CLI11 alone took -1 as 2^64 - 1).
   for (const std::string& command : {Bin("simulate") + " --out " + Path("seeded"), Bin("measure_frontend")}) {
-    for (const char* seed : {"-1", "0x10", "1e3", "18446744073709551616"}) {
-      r = RunCommand(command + " --seed " + seed);
+    for (const char* seed : {"-1", "0x10", "1e3", "18446744073709551616", ""}) {
+      r = RunCommand(command + " --seed '" + seed + "'");
       EXPECT_EQ(r.exit_code, 2) << command << " --seed " << seed << ": " << r.output;
       EXPECT_NE(r.output.find("--seed: expected an integer in [0, 2^64-1], got '" + std::string(seed) + "'"),
                 std::string::npos)
