@@ -70,6 +70,7 @@ TEST(StereoFrontEnd, PredictedMotionSeedsTheFlowBeyondThePyramidsReach) {
   // ... the seeded flow keeps most of them, on their own 3-D lines: the prediction seeds the
   // lines the pair can place (the others, near the rows, move by the scene's median depth).
   ASSERT_GE(seeded.placeable, 15);
+  EXPECT_GE(seeded.placeable, 0.5 * seeded.tracked) << seeded.placeable << " of " << seeded.tracked;
   EXPECT_GE(seeded.predicted, 0.9 * seeded.placeable) << seeded.predicted << " of " << seeded.placeable;
   EXPECT_GE(seeded.tracked, 0.4 * seeded.live) << seeded.tracked << " of " << seeded.live;
   EXPECT_GE(seeded.correct, 0.95 * seeded.tracked) << seeded.correct << " of " << seeded.tracked;

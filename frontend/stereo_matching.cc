@@ -61,13 +61,15 @@ double StereoGeometry::BeamOverlap(const Segment2d& left, const Segment2d& right
   if (EpipolarSine(left) < epipolar_sine) {
     // Across the beam: s(p) = signed distance of a right point from the epipolar line of x
     // (the row difference in a rectified rig). The left segment spans [0, w] in s (w: from the
-    // epipolar line of x to that of y, which nearly coincide, so F orients them alike), the
-    // right one [s(x'), s(y')]; the shorter extent must lie within the longer one widened by
+    // epipolar line of x to that of y, which nearly coincide), the right one [s(x'), s(y')]; the shorter extent must lie within the longer one widened by
     // epipolar_distance_px (one end hidden in one image shortens that extent). A 3-D line whose
     // left image is near an epipolar line lies near an epipolar plane, so its right image is
     // near one too: a right segment steeper than twice the left's bound is another line.
     if (SineToEpipolarLine(right, right_epipole_) >= 2.0 * epipolar_sine) return 0.0;
-    const Eigen::Vector3d lx = f_ * H(x), ly = f_ * H(y);
+    const Eigen::Vector3d lx = f_ * H(x);
+    Eigen::Vector3d ly = f_ * H(y);
+    // A segment across the left epipole (converging cameras) gets opposite orientations.
+    if (lx.head<2>().dot(ly.head<2>()) < 0.0) ly = -ly;
     const double nx = lx.head<2>().norm(), ny = ly.head<2>().norm();
     if (nx == 0.0 || ny == 0.0) return 0.0;
     const Eigen::Vector3d a = H(right.head<2>()), b = H(right.tail<2>());

@@ -64,8 +64,9 @@ class StereoGeometry {
   //     the beam (s = the distance from the epipolar line of the left segment's first endpoint;
   //     the row in a rectified rig), the shorter of the two extents within the longer one
   //     widened by `epipolar_distance_px` each side (one end hidden in one image shortens
-  //     that extent). For a tracked pair, whose lines turn across the 5-deg bound as the camera
-  //     moves and span several rows at 4 deg over 70 px (docs/frontend.md, thirteenth pass).
+  //     that extent; `of` makes no difference here). For a tracked pair, whose lines turn
+  //     across the 5-deg bound as the camera moves and span several rows at 4 deg over 70 px
+  //     (docs/frontend.md, thirteenth pass).
   enum class OverlapOf { kShorter, kUnion };
   enum class AlongEpipolar { kOnMidpointLine, kSameExtent };
   double BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine, double epipolar_distance_px,

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include "frontend/frontend_audit.h"
 #include "frontend/rendered_pair.h"
 
@@ -203,8 +205,8 @@ TEST(StereoGeometry, BeamOverlapOfRectifiedSegments) {
 }
 
 TEST(StereoGeometry, BeamOfALineAFewDegreesOffTheEpipolarDirection) {
-  // A 3-D line 4 deg off the rows, 2-3 m in front of the default rig: it spans 5 rows of each
-  // image, which the matcher's test against the epipolar line of the left midpoint (within
+  // A 3-D line 3.4 deg off the rows, 2-3 m in front of the default rig: it spans 14 rows of
+  // each image, which the matcher's test against the epipolar line of the left midpoint (within
   // 1.5 px) refuses; a tracked pair's test accepts the segments of the same line in the two
   // images, which span the same rows.
   using Along = StereoGeometry::AlongEpipolar;
@@ -234,6 +236,37 @@ TEST(StereoGeometry, BeamOfALineAFewDegreesOffTheEpipolarDirection) {
   // segment is not the image of a line near an epipolar plane.
   EXPECT_EQ(geometry.BeamOverlap(Segment2d(422, 125, 251, 125), Segment2d(225, 126, 225, 250), sine, 1.5,
                                  Of::kShorter, Along::kSameExtent),
+            0.0);
+}
+
+TEST(StereoGeometry, BeamOfALineNearAnEpipolarPlaneOfARolledRig) {
+  // The right camera rolled by 20 deg: the epipolar lines run at -20 deg in the left image and
+  // along the rows in the right one, so each image's segment is judged against its own epipole.
+  // A 3-D line 0.03 m off the epipolar plane through p (3.4 deg off the left epipolar
+  // direction, 3.1 deg off the right one).
+  StereoRig rig;
+  rig.right_from_left.rotation = Eigen::AngleAxisd(20.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const StereoGeometry geometry(rig);
+  ASSERT_FALSE(geometry.rectified());
+  const double sine = std::sin(5.0 * M_PI / 180.0);
+  const Eigen::Vector3d right_centre = rig.right_from_left.Inverse().translation;
+  const Eigen::Vector3d p(-0.3, 0.2, 2.0);
+  const Eigen::Vector3d q = 1.5 * p + 5.0 * right_centre + 0.03 * p.cross(right_centre).normalized();
+  const Eigen::Vector2d pl = rig.left.Project(p), ql = rig.left.Project(q);
+  const Eigen::Vector2d pr = rig.right.Project(rig.right_from_left * p), qr = rig.right.Project(rig.right_from_left * q);
+  const Segment2d left(pl.x(), pl.y(), ql.x(), ql.y()), right(pr.x(), pr.y(), qr.x(), qr.y());
+  ASSERT_LT(geometry.EpipolarSine(left), sine);
+  ASSERT_GT(std::abs(ql.y() - pl.y()), 20.0) << "the left segment must not lie along the rows";
+  using Along = StereoGeometry::AlongEpipolar;
+  using Of = StereoGeometry::OverlapOf;
+  EXPECT_EQ(geometry.BeamOverlap(left, right, sine, 1.5), 0.0);
+  EXPECT_EQ(geometry.BeamOverlap(left, right, sine, 1.5, Of::kShorter, Along::kSameExtent), 1.0);
+  // The other orientation of the same segments, and the right one 3 px across its epipolar lines.
+  EXPECT_EQ(geometry.BeamOverlap(Segment2d(ql.x(), ql.y(), pl.x(), pl.y()), Segment2d(qr.x(), qr.y(), pr.x(), pr.y()),
+                                 sine, 1.5, Of::kShorter, Along::kSameExtent),
+            1.0);
+  EXPECT_EQ(geometry.BeamOverlap(left, Segment2d(pr.x(), pr.y() + 3.0, qr.x(), qr.y() + 3.0), sine, 1.5, Of::kShorter,
+                                 Along::kSameExtent),
             0.0);
 }
 
