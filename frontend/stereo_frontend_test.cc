@@ -139,14 +139,13 @@ TEST(StereoFrontEnd, WithAMeasuredMotionNewLinesAreMatchedInThePreviousPairAndCh
   SimulatedSequence judged = paper.sequence();
   judged.lines = WithBarSecondEdges(paper.sequence());
   const auto run = [&](double max_previous_px) {
-    FrontEndOptions options;
+    // The paper scene's matching options (PaperSceneOptions, frontend_audit.h: its disparity
+    // range and row check), its tracking options left at the defaults.
+    FrontEndOptions options = FrontEndOptionsFromJson(
+        {{"matching", PaperSceneOptions(paper.rig())["matching"]}}, "paper scene matching");
     options.detection.detector = LineDetectorType::kLsd;  // the detections measured below
     options.matching.max_previous_px = max_previous_px;
     options.matching.previous_pairs = 2;
-    // The paper scene's range and row check (PaperSceneOptions, frontend_audit.h).
-    options.matching.min_disparity_px = 84.0;
-    options.matching.max_disparity_px = 425.0;
-    options.matching.min_union_overlap = 0.5;
     auto front_end = std::make_unique<StereoFrontEnd>(options, paper.rig());
     for (int k = 16; k <= 20; ++k) {
       const std::optional<Rigid3d> predicted =

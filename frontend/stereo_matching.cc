@@ -27,6 +27,39 @@ double SineToEpipolarLine(const Segment2d& segment, const Eigen::Vector3d& epipo
   return std::abs(dir.dot(epipolar.head<2>()) / norm);
 }
 
+// Both right endpoints within `distance_px` of the epipolar line of the left midpoint.
+bool OnEpipolarLineOfMidpoint(const Eigen::Matrix3d& f, const Segment2d& left, const Segment2d& right,
+                              double distance_px) {
+  const Eigen::Vector3d l = f * H(0.5 * (left.head<2>() + left.tail<2>()));
+  const double n = l.head<2>().norm();
+  if (n == 0.0) return false;
+  return std::abs(l.dot(H(right.head<2>()))) / n <= distance_px && std::abs(l.dot(H(right.tail<2>()))) / n <= distance_px;
+}
+
+// Across the beam: s(p) = signed distance of a right point from the epipolar line of the left
+// segment's first endpoint x (the row difference in a rectified rig). The left segment spans
+// [0, w] in s (w: from the epipolar line of x to that of y, which nearly coincide), the right
+// one [s(x'), s(y')]; the shorter extent must lie within the longer one widened by
+// `distance_px` (one end hidden in one image shortens that extent). A 3-D line whose left image
+// is near an epipolar line lies near an epipolar plane, so its right image is near one too: a
+// right segment steeper than twice the left's bound is another line.
+bool SameExtentAcrossBeam(const Eigen::Matrix3d& f, const Eigen::Vector3d& right_epipole, const Segment2d& left,
+                          const Segment2d& right, double epipolar_sine, double distance_px) {
+  if (SineToEpipolarLine(right, right_epipole) >= 2.0 * epipolar_sine) return false;
+  const Eigen::Vector3d lx = f * H(left.head<2>());
+  Eigen::Vector3d ly = f * H(left.tail<2>());
+  // A segment across the left epipole (converging cameras) gets opposite orientations.
+  if (lx.head<2>().dot(ly.head<2>()) < 0.0) ly = -ly;
+  const double nx = lx.head<2>().norm(), ny = ly.head<2>().norm();
+  if (nx == 0.0 || ny == 0.0) return false;
+  const Eigen::Vector3d a = H(right.head<2>()), b = H(right.tail<2>());
+  const double sa = lx.dot(a) / nx, sb = lx.dot(b) / nx;
+  const double w = 0.5 * (sa - ly.dot(a) / ny + sb - ly.dot(b) / ny);
+  const double l0 = std::min(0.0, w), l1 = std::max(0.0, w), r0 = std::min(sa, sb), r1 = std::max(sa, sb);
+  const double d = distance_px;
+  return l1 - l0 <= r1 - r0 ? (l0 >= r0 - d && l1 <= r1 + d) : (r0 >= l0 - d && r1 <= l1 + d);
+}
+
 }  // namespace
 
 StereoGeometry::StereoGeometry(const StereoRig& rig) {
@@ -49,37 +82,14 @@ double StereoGeometry::EpipolarSine(const Segment2d& left) const { return SineTo
 
 double StereoGeometry::BeamOverlap(const Segment2d& left, const Segment2d& right, double epipolar_sine,
                                    double epipolar_distance_px, OverlapOf of, AlongEpipolar along) const {
+  if (EpipolarSine(left) < epipolar_sine) {
+    const bool agree = along == AlongEpipolar::kOnMidpointLine
+                           ? OnEpipolarLineOfMidpoint(f_, left, right, epipolar_distance_px)
+                           : SameExtentAcrossBeam(f_, right_epipole_, left, right, epipolar_sine, epipolar_distance_px);
+    return agree ? 1.0 : 0.0;
+  }
   const Eigen::Vector2d x = left.head<2>(), y = left.tail<2>();
   const double length = (y - x).norm();
-  if (EpipolarSine(left) < epipolar_sine && along == AlongEpipolar::kOnMidpointLine) {
-    const Eigen::Vector3d l = f_ * H(0.5 * (x + y));
-    const double n = l.head<2>().norm();
-    if (n == 0.0) return 0.0;
-    const double d0 = std::abs(l.dot(H(right.head<2>()))) / n, d1 = std::abs(l.dot(H(right.tail<2>()))) / n;
-    return d0 <= epipolar_distance_px && d1 <= epipolar_distance_px ? 1.0 : 0.0;
-  }
-  if (EpipolarSine(left) < epipolar_sine) {
-    // Across the beam: s(p) = signed distance of a right point from the epipolar line of x
-    // (the row difference in a rectified rig). The left segment spans [0, w] in s (w: from the
-    // epipolar line of x to that of y, which nearly coincide), the right one [s(x'), s(y')]; the shorter extent must lie within the longer one widened by
-    // epipolar_distance_px (one end hidden in one image shortens that extent). A 3-D line whose
-    // left image is near an epipolar line lies near an epipolar plane, so its right image is
-    // near one too: a right segment steeper than twice the left's bound is another line.
-    if (SineToEpipolarLine(right, right_epipole_) >= 2.0 * epipolar_sine) return 0.0;
-    const Eigen::Vector3d lx = f_ * H(x);
-    Eigen::Vector3d ly = f_ * H(y);
-    // A segment across the left epipole (converging cameras) gets opposite orientations.
-    if (lx.head<2>().dot(ly.head<2>()) < 0.0) ly = -ly;
-    const double nx = lx.head<2>().norm(), ny = ly.head<2>().norm();
-    if (nx == 0.0 || ny == 0.0) return 0.0;
-    const Eigen::Vector3d a = H(right.head<2>()), b = H(right.tail<2>());
-    const double sa = lx.dot(a) / nx, sb = lx.dot(b) / nx;
-    const double w = 0.5 * (sa - ly.dot(a) / ny + sb - ly.dot(b) / ny);
-    const double l0 = std::min(0.0, w), l1 = std::max(0.0, w), r0 = std::min(sa, sb), r1 = std::max(sa, sb);
-    const double d = epipolar_distance_px;
-    const bool inside = l1 - l0 <= r1 - r0 ? (l0 >= r0 - d && l1 <= r1 + d) : (r0 >= l0 - d && r1 <= l1 + d);
-    return inside ? 1.0 : 0.0;
-  }
   const Eigen::Vector3d line = H(x).cross(H(y));
   const Eigen::Vector2d d = (y - x) / length;
   double t[2];
