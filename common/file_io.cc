@@ -18,11 +18,13 @@ namespace {
 namespace fs = std::filesystem;
 
 // `path` absolute and normalised, links resolved as far as they exist; as written (absolute,
-// normalised) when it cannot be resolved (a component without permission).
+// normalised) when it cannot be resolved (a component without permission). An empty path is
+// the working directory: the parent of a bare file name (fs::absolute throws on "").
 fs::path ResolvedPath(const fs::path& path) {
+  const fs::path given = path.empty() ? fs::path(".") : path;
   std::error_code error;
-  const fs::path resolved = fs::weakly_canonical(fs::absolute(path), error);
-  return error ? fs::absolute(path).lexically_normal() : resolved;
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(given), error);
+  return error ? fs::absolute(given).lexically_normal() : resolved;
 }
 
 // Temporary files in flight, for the signal handler: it may only read these pointers and call

@@ -85,6 +85,25 @@ TEST(RefusePathsInReplacedDirectory, RefusesWhatTheReplacementWouldDelete) {
             "directory whole)");
 }
 
+// `track_images -o traj.tum --viz viz` run in the folder of both: paths without a folder are
+// in the working directory (the parent of a bare name is empty; this threw before).
+TEST(RefusePathsInReplacedDirectory, TakesBareNamesInTheWorkingDirectory) {
+  const std::string dir = TempDir("refuse_bare");
+  const fs::path previous = fs::current_path();
+  fs::current_path(dir);
+  const auto check = [&](const std::string& viz, const std::string& path) {
+    return ErrorOf([&] { RefusePathsInReplacedDirectory("--viz", viz, {{"--output", path}}); });
+  };
+  const std::string traj_in_viz = check("viz", "viz/traj.tum"), traj_beside = check("viz", "traj.tum"),
+                    viz_is_output = check("viz", "viz"), cwd_as_viz = check(".", "traj.tum");
+  fs::current_path(previous);
+  EXPECT_EQ(traj_beside, "");
+  EXPECT_EQ(traj_in_viz, "--viz viz: holds --output viz/traj.tum, which the run would delete (it replaces the "
+                         "directory whole)");
+  EXPECT_NE(viz_is_output, "");
+  EXPECT_NE(cwd_as_viz, "");
+}
+
 TEST(FreshStagingDir, EmptiesWhatAnInterruptedRunLeft) {
   const std::string dir = TempDir("fresh_staging") + "/out";
   Touch(StagingDir(dir) + "/stale/file.txt");

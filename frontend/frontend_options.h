@@ -106,7 +106,10 @@ struct MatchingOptions {
   double min_overlap = 0.5;
   // The same overlap as a fraction of the union of the two extents (0 = off): segments of one
   // 3-D line cover the same rows in both images unless an end is occluded or clipped, a pair of
-  // two different lines that share some rows rarely does.
+  // two different lines that share some rows rarely does. Asked only of the pairs that no
+  // earlier pair verifies (max_previous_px below): the verification tells the two apart and
+  // keeps the pairs with an end hidden in one image, which this test loses (docs/frontend.md,
+  // the fourteenth pass).
   double min_union_overlap = 0.0;
   // Temporal verification (stereo_matching.h, SeenInPreviousPair; 0 = off): a new match's 3-D
   // line, moved into an earlier stereo pair by the camera motion between them, must lie within

@@ -226,9 +226,11 @@ void StereoMatcher::Match(const cv::Mat& left_grey, const cv::Mat& right_grey, c
       candidates_.push_back({i, j, (left_descriptors[i] - right_descriptors[j]).norm(), 0.0f});
     }
   }
-  // The verifications of a pair: the union overlap and the cross-correlation.
+  // The verifications of a pair: the union overlap (of a pair that `verify` does not check) and
+  // the cross-correlation.
+  const bool union_test = options_.min_union_overlap > 0.0 && verify == nullptr;
   const auto accepted = [&](int i, int j, float* ncc) {
-    if (options_.min_union_overlap > 0.0 &&
+    if (union_test &&
         geometry_.BeamOverlap(left[i].segment, right[j].segment, epipolar_sine_, options_.epipolar_distance_px,
                               StereoGeometry::OverlapOf::kUnion) < options_.min_union_overlap) {
       return false;

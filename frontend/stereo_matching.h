@@ -115,9 +115,9 @@ class StereoMatcher {
   // (descriptors[i] of lines[i]):
   // mutual nearest neighbours in MSLD distance passing the ratio test, then the union overlap
   // and the cross-correlation. With `verify` (a check of a pair by left and right index, e.g.
-  // SeenInPreviousPair), every candidate is checked first (union overlap, cross-correlation,
-  // `verify`) and the uniqueness tests are among those that pass: look-alike lines that the
-  // descriptor cannot tell apart, the check can.
+  // SeenInPreviousPair), every candidate is checked first (cross-correlation, `verify`; not the
+  // union overlap, which the check makes redundant) and the uniqueness tests are among those
+  // that pass: look-alike lines that the descriptor cannot tell apart, the check can.
   using PairCheck = std::function<bool(int left, int right)>;
   void Match(const cv::Mat& left_grey, const cv::Mat& right_grey, const std::vector<ImageLine>& left,
              const std::vector<MsldDescriptor>& left_descriptors, const std::vector<ImageLine>& right,

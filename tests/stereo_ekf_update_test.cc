@@ -337,6 +337,91 @@ TEST(FirstUpdate, HealthCountsTheRowsMeasured) {
   }
 }
 
+// The recheck (options.robust_recheck) on the first update, after the RANSAC start
+// (robust_start_frames 0): ten features, the first `wrong` of which measure a pose off by
+// `shift` (as the lines of a wrong stereo match do), all inside the gate of the wide prior.
+std::unique_ptr<LinearTestModel> ShiftedFeatures(int wrong, const Vector6d& shift) {
+  auto model = LinearFeatureModel(10, TrueDelta(), 21);
+  for (int i = 0; i < wrong; ++i) model->feature(i).offset += model->feature(i).a * shift;
+  return model;
+}
+
+StereoEkfOptions RecheckOptions(bool recheck) {
+  StereoEkfOptions options;
+  options.robust_start_frames = 0;
+  options.robust_recheck = recheck;
+  return options;
+}
+
+TEST(Recheck, AGrosslyInconsistentUpdateIsSolvedAgainOnItsConsensus) {
+  // Too many wrong features for the posterior re-gating (which drops at most half of those it
+  // finds outside the gate): the update keeps all ten and lands between the two poses, its cost
+  // over twice the healthy bound. The recheck solves it again on the RANSAC consensus, the
+  // right features: the same pose as a tracker given those alone. A cost over the bound but not
+  // twice (the smaller shift) is left to the next frame's RANSAC, as before.
+  const Vector6d shift = (Vector6d() << 0.01, 0.01, -0.01, 0.02, 0.02, -0.02).finished();
+  struct Case {
+    int wrong;
+    double scale;
+    bool rechecked;
+  };
+  for (const Case& c : {Case{4, 1.0, true}, Case{3, 2.0, true}, Case{4, 0.5, false}}) {
+    SCOPED_TRACE(testing::Message() << c.wrong << " wrong, shift x" << c.scale);
+    StereoEkfTracker plain(RecheckOptions(false), ShiftedFeatures(c.wrong, c.scale * shift), nlohmann::json::object());
+    const TrackerOutput before = TrackFirstUpdate(&plain);
+    EXPECT_EQ(before.status, TrackingStatus::kDegraded);
+    EXPECT_EQ(before.features_used, 10);
+    EXPECT_EQ(plain.counters().robust_solves, 0);
+
+    StereoEkfTracker rechecked(RecheckOptions(true), ShiftedFeatures(c.wrong, c.scale * shift), nlohmann::json::object());
+    const TrackerOutput out = TrackFirstUpdate(&rechecked);
+    const Vector6d pose = LogSE3(rechecked.filter().cam_from_ref());
+    if (!c.rechecked) {
+      EXPECT_EQ(rechecked.counters().robust_solves, 0);
+      EXPECT_EQ(pose, LogSE3(plain.filter().cam_from_ref()));
+      continue;
+    }
+    EXPECT_EQ(rechecked.counters().robust_solves, 1);
+    EXPECT_EQ(out.status, TrackingStatus::kTracking);
+    EXPECT_EQ(out.features_used, 10 - c.wrong);
+    EXPECT_EQ(out.features_outside_gate, c.wrong);
+    auto right_only = std::make_unique<LinearTestModel>(TrueDelta());
+    for (int i = c.wrong; i < 10; ++i) right_only->AddFeature(ShiftedFeatures(0, shift)->feature(i));
+    StereoEkfTracker reference(RecheckOptions(false), std::move(right_only), nlohmann::json::object());
+    ASSERT_EQ(TrackFirstUpdate(&reference).features_used, 10 - c.wrong);
+    const Vector6d reference_pose = LogSE3(reference.filter().cam_from_ref());
+    EXPECT_LT((pose - reference_pose).norm(), 1e-12) << pose.transpose() << "\n" << reference_pose.transpose();
+    EXPECT_LT((pose - TrueDelta()).norm(), 0.5 * (LogSE3(plain.filter().cam_from_ref()) - TrueDelta()).norm());
+  }
+}
+
+TEST(Recheck, KeepsAnUpdateThatMostFeaturesDisagreeWith) {
+  // Four features agree; the other six are each off in a way of its own, as when the model does
+  // not fit (a wrong focal length) or its noise is too tight. The RANSAC consensus is the four, a
+  // minority of the update's ten: the recheck keeps the update as it was rather than fit the pose
+  // to a few, as the posterior re-gating does (RemovePosteriorOutliers).
+  auto scattered = [] {
+    auto model = LinearFeatureModel(10, TrueDelta(), 21);
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> normal(0.0, 0.02);
+    for (int i = 4; i < 10; ++i) {
+      const Vector6d shift = Vector6d::NullaryExpr([&]() { return normal(rng); });
+      model->feature(i).offset += model->feature(i).a * shift;
+    }
+    return model;
+  };
+  StereoEkfTracker plain(RecheckOptions(false), scattered(), nlohmann::json::object());
+  const TrackerOutput before = TrackFirstUpdate(&plain);
+  ASSERT_EQ(plain.counters().robust_solves, 0);
+  StereoEkfTracker rechecked(RecheckOptions(true), scattered(), nlohmann::json::object());
+  const TrackerOutput out = TrackFirstUpdate(&rechecked);
+  EXPECT_EQ(rechecked.counters().robust_solves, 1);
+  EXPECT_GT(before.features_used, 5);
+  EXPECT_EQ(out.status, before.status);
+  EXPECT_EQ(out.features_used, before.features_used);
+  EXPECT_EQ(LogSE3(rechecked.filter().cam_from_ref()), LogSE3(plain.filter().cam_from_ref()));
+}
+
 TEST(FirstUpdate, LostWhenAPoseDirectionIsNotMeasured) {
   // Features with a zero Jacobian measure nothing about the pose (H = 0): the update runs, its
   // cost is healthy, but the pose is the prior's alone, and the tracker says lost whatever

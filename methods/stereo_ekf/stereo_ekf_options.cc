@@ -31,6 +31,8 @@ const OptionSchema<StereoEkfOptions>& StereoEkfOptionsSchema() {
           .Field("adaptive_noise", &O::adaptive_noise, "scale R online from the posterior residuals")
           .Field("robust", &O::robust, "RANSAC start when the prior is weak or the filter unhealthy")
           .Field("robust_start_frames", &O::robust_start_frames, AtLeast(0), "frames after the start seeded by RANSAC")
+          .Field("robust_recheck", &O::robust_recheck,
+                 "an update grossly inconsistent (cost over twice the healthy bound) is solved again from RANSAC on the same frame")
           .Flat(&O::ransac, RansacOptionsSchema())
           .Field("robust_max_sigma", &O::robust_max_sigma, AtLeast(0.0),
                  "RANSAC hypotheses move only along directions determined to this sigma (m or rad; 0 = all)")

@@ -72,6 +72,13 @@ struct StereoEkfOptions {
   // disagrees with the prediction, the filter is re-seeded from it.
   bool robust = true;
   int robust_start_frames = 3;
+  // The same frame's recheck (with robust): an update whose posterior cost exceeds
+  // kRecheckCostFactor (2) times its healthy bound is solved again from the RANSAC consensus of
+  // that frame before the filter takes it. Its measurements disagree grossly (features the gate
+  // let in that no pose explains: wrong 3-D lines of a new reference pair, stereo mismatches of
+  // an image front end, docs/frontend.md); without the recheck the RANSAC runs only on the next
+  // frame, after the filter has taken the polluted pose and velocity.
+  bool robust_recheck = true;
   RansacOptions ransac;
   // The directions a RANSAC hypothesis and its consensus refinement solve (RefinePose,
   // least_squares.h): only those their features determine to this standard deviation or better

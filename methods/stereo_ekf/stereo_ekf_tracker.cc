@@ -32,6 +32,11 @@ constexpr double kMinExpectedCorrection = 0.5;
 // noise model is right).
 constexpr double kMinInlierFraction = 0.5;
 constexpr double kMaxNormalizedCost = 2.0;
+// The recheck (options.robust_recheck): an update's cost over this multiple of its healthy bound.
+// It separates a noise model a little too tight (a cost just over the bound) from features that
+// no pose explains (many times over: a new reference pair holding wrong stereo matches;
+// docs/frontend.md, the fourteenth pass).
+constexpr double kRecheckCostFactor = 2.0;
 // The standard normal's 99.9 % quantile (of the Wilson-Hilferty bound in HealthyCost).
 constexpr double kStandardNormal999 = 3.09;
 // The median of chi-square(4), ChiSquareQuantile(0.5, 4) = 3.3567, rounded as when the
@@ -182,13 +187,14 @@ void StereoEkfTracker::Gate(const StereoFrame& frame, FrameState* state) {
   state->out.features_degenerate = n - state->valid;
 }
 
-void StereoEkfTracker::RobustStart(FrameState* state) {
+bool StereoEkfTracker::RobustStart(FrameState* state, bool recheck) {
   const bool weak_prior = frames_since_start_ <= options_.robust_start_frames;
   const bool suspicious =
-      !healthy_ ||
+      recheck || !healthy_ ||
       state->gated < std::max(2, static_cast<int>(std::ceil(kMinInlierFraction * previous_inliers_)));
-  if (!options_.robust || state->valid < 2 || !(weak_prior || suspicious)) return;
+  if (!options_.robust || state->valid < 2 || !(weak_prior || suspicious)) return false;
   ++counters_.robust_solves;
+  state->robust_solved = true;
   const Rigid3d& predicted = state->predicted;
   starts_.assign({predicted, filter_.previous_cam_from_ref()});
   // A filter that has gone wrong may be far from the truth: also start from the reference
@@ -198,7 +204,15 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
                        &robust_result_);
   const int consensus = static_cast<int>(robust_result_.inliers.size());
   const int min_consensus = std::min(state->valid, options_.min_consensus);
-  if (!robust_result_.success || consensus < min_consensus || !(weak_prior || consensus > state->gated)) return;
+  // A recheck takes a consensus smaller than the gate's set (which has just failed), but not a
+  // minority of it: when most features disagree with every pose, the model does not fit (a wrong
+  // focal length) or its noise is too tight, as in RemovePosteriorOutliers, and dropping most
+  // of them would fit the pose to a few.
+  const bool majority = 2 * consensus > state->entering;
+  if (!robust_result_.success || consensus < min_consensus ||
+      !(weak_prior || (recheck && majority) || consensus > state->gated)) {
+    return false;
+  }
   // The robust solve explains more features than the gate let through (or the prior is too
   // weak to gate): linearise there, on its inliers. If it is also incompatible with the
   // prediction, the filter went wrong: restart it from the measurement-only solve instead of
@@ -214,7 +228,7 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
   const Matrix6d robust_covariance =
       (robust_result_.information + Matrix6d::Identity()).ldlt().solve(Matrix6d::Identity());
   const double mahalanobis = d.dot((filter_.PoseCovariance() + robust_covariance).ldlt().solve(d));
-  if (mahalanobis < reseed_gate_) return;
+  if (mahalanobis < reseed_gate_) return true;
   // Known approximation: the update that follows uses the same features again, so with this
   // prior of H^-1 they count twice and the posterior is about (2H)^-1, sqrt(2) too confident in
   // sigma. Counting them once (a prior of 100 H^-1) was measured worse: the wider covariance
@@ -223,12 +237,26 @@ void StereoEkfTracker::RobustStart(FrameState* state) {
   filter_.Reseed(state->linearization, robust_covariance, /*previous_pose_trusted=*/healthy_);
   if (consider_) consider_->Clear();
   ++counters_.reseeds;
+  return true;
 }
 
 void StereoEkfTracker::Update(FrameState* state) {
   state->entering = static_cast<int>(inliers_.size());
   if (inliers_.size() >= 2) state->cost = IteratedUpdate(state->linearization, state->blocks_at_linearization);
   state->used = static_cast<int>(inliers_.size());  // less the outliers re-gated at the solution
+}
+
+void StereoEkfTracker::RecheckAndCommit(FrameState* state) {
+  if (!std::isfinite(state->cost)) return;
+  if (options_.robust_recheck && !state->robust_solved &&
+      state->cost > kRecheckCostFactor * HealthyCost(MeasuredRows()) && RobustStart(state, /*recheck=*/true)) {
+    // The consensus replaces the inlier set (and may have re-seeded the filter): solve again.
+    // If that solve fails the frame has no update, rather than the inconsistent one.
+    state->cost = std::numeric_limits<double>::infinity();
+    Update(state);
+    if (!std::isfinite(state->cost)) return;
+  }
+  CommitUpdate();
 }
 
 double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization) {
@@ -321,20 +349,13 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     const double step_sq = consider_ ? step.dot(solver.Solve(step)) : solver.SquaredNorm(step);
     if (step_sq < options_.iteration_tolerance * options_.iteration_tolerance) break;
   }
-  ++counters_.updates;
-  frame_information_ = ne.FullHessian();
+  pending_.information = ne.FullHessian();
+  pending_.delta = delta;
   if (consider_) {
-    filter_.CorrectState(consider_delta, consider_posterior);
-    consider_->Commit(inliers_);
+    pending_.consider_delta = consider_delta;
+    pending_.consider_posterior = consider_posterior;
   } else {
-    filter_.Correct(delta, solver.Inverse(), prior_information);
-  }
-  if (options_.adaptive_process_noise) {
-    // The pose correction against its expected size under the model: for a linear-Gaussian
-    // update E[d^T P^-1 d] = tr(P^-1 (P - P+)) = 6 - tr(P^-1 P+), P the predicted pose covariance.
-    const Matrix6d posterior = filter_.PoseCovariance();
-    const double expected = std::max(6.0 - (prior_information * posterior).trace(), kMinExpectedCorrection);
-    correction_ratio_ = delta.dot(prior_information * delta) / expected;
+    pending_.covariance = solver.Inverse();
   }
   // Posterior cost of each measurement, linearised at the last point: |rw + Jw (d - d_k)|^2.
   const Vector6d step = delta - delta_k;
@@ -347,6 +368,25 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
     total += q;
   }
   return total;
+}
+
+void StereoEkfTracker::CommitUpdate() {
+  ++counters_.updates;
+  frame_information_ = pending_.information;
+  const Matrix6d& prior_information = prior_information_;
+  if (consider_) {
+    filter_.CorrectState(pending_.consider_delta, pending_.consider_posterior);
+    consider_->Commit(inliers_);
+  } else {
+    filter_.Correct(pending_.delta, pending_.covariance, prior_information);
+  }
+  if (options_.adaptive_process_noise) {
+    // The pose correction against its expected size under the model: for a linear-Gaussian
+    // update E[d^T P^-1 d] = tr(P^-1 (P - P+)) = 6 - tr(P^-1 P+), P the predicted pose covariance.
+    const Matrix6d posterior = filter_.PoseCovariance();
+    const double expected = std::max(6.0 - (prior_information * posterior).trace(), kMinExpectedCorrection);
+    correction_ratio_ = pending_.delta.dot(prior_information * pending_.delta) / expected;
+  }
 }
 
 bool StereoEkfTracker::RemovePosteriorOutliers(const Vector6d& step) {
@@ -550,6 +590,7 @@ TrackerOutput StereoEkfTracker::Track(const StereoFrame& frame) {
   Gate(frame, &state);
   RobustStart(&state);
   Update(&state);
+  RecheckAndCommit(&state);
   Assess(&state);
   RefineStructure(&state);
   NewReferencePair(frame, &state);

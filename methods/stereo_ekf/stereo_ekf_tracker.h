@@ -13,15 +13,18 @@
 //      sum_i |r_i(Exp(d) M)|^2_{R_i} + |d|^2_{P_pp}, one step = the paper's EKF update; when
 //      the model describes its reference structure's error (FeatureModel::DescribesStructure),
 //      each step is instead the Schmidt-Kalman update of structure_consider.h, which keeps the
-//      state's correlation with that error;
+//      state's correlation with that error. The filter takes the solution only after the
+//      recheck (robust_recheck): a solution grossly inconsistent with its measurements (cost
+//      over kRecheckCostFactor times the healthy bound of stage 4) is solved again from the
+//      robust start of stage 2 on the same frame, if it had not run;
 //   4. assess: lost (no update) or tracking; health (posterior cost against its chi-square
 //      bound), the measurement-noise scale for the next frame and, when adapted, the process
 //      noise (the pose correction against its expected size);
 //   5. new reference pair (Sec. 3.3, the paper's feature replacement): when too few reference
 //      features remain, the current pair becomes the reference and the world pose of the
 //      reference is chained.
-// Stages 2 and 4 hold the robustness policy beyond the paper (RANSAC start and re-seeding,
-// health, noise adaptation, widening and velocity decay while lost); the paper preset turns it
+// Stages 2 and 4 and the recheck hold the robustness policy beyond the paper (RANSAC start,
+// recheck and re-seeding, health, noise adaptation, widening and velocity decay while lost); the paper preset turns it
 // off as a whole (ApplyPaperPreset), and each part has its own option for ablations.
 #pragma once
 
@@ -90,14 +93,19 @@ class StereoEkfTracker : public PoseTracker {
     Rigid3d linearization;                // where the update starts
     bool blocks_at_linearization = true;  // features_ were evaluated at `linearization`
     double cost = std::numeric_limits<double>::infinity();  // posterior cost; infinity: no update
+    bool robust_solved = false;  // a RANSAC ran on this frame
     TrackerOutput out;
   };
 
   TrackerOutput Start(const StereoFrame& frame);
   // The stages, in order.
   void Gate(const StereoFrame& frame, FrameState* state);
-  void RobustStart(FrameState* state);
+  // `recheck`: run for an update found grossly inconsistent (stage 3), which its consensus then
+  // replaces whatever its size. True when the consensus became the update's inlier set.
+  bool RobustStart(FrameState* state, bool recheck = false);
   void Update(FrameState* state);
+  // The recheck of stage 3 (robust_recheck), then the filter takes the update's solution.
+  void RecheckAndCommit(FrameState* state);
   void Assess(FrameState* state);
   // Lets the model refine its reference structure (FeatureModel::RefineStructure) after a
   // measured frame, moves the pose where the model says, and takes the pose covariance the
@@ -114,8 +122,11 @@ class StereoEkfTracker : public PoseTracker {
   // Iterated update on `inliers_`, with the filter's pose as prior mean, starting at
   // `linearization`; `blocks_at_linearization` says that features_ were evaluated there.
   // Returns the posterior cost of the measurements (whitened, squared), or infinity when it
-  // made no update (nothing solvable, or fewer than two features left after re-gating).
+  // made no update (nothing solvable, or fewer than two features left after re-gating). The
+  // solution waits in pending_ for CommitUpdate.
   double IteratedUpdate(const Rigid3d& linearization, bool blocks_at_linearization);
+  // The filter takes pending_ (the last IteratedUpdate's solution).
+  void CommitUpdate();
   // Drops the inliers whose linearised cost after `step` exceeds the gate; true if any.
   bool RemovePosteriorOutliers(const Vector6d& step);
   // `rows`: MeasuredRows() of this frame's update.
@@ -182,6 +193,16 @@ class StereoEkfTracker : public PoseTracker {
   Matrix6d prior_information_;     // P_pp^-1
   std::vector<Rigid3d> starts_;
   RobustSolveResult robust_result_;
+  // The solution of the last IteratedUpdate, not yet in the filter: the pose correction and its
+  // posterior covariance, or with the structure consider the state correction and covariance.
+  struct PendingUpdate {
+    Vector6d delta = Vector6d::Zero();
+    Matrix6d covariance = Matrix6d::Identity();
+    StructureConsider::Vector12d consider_delta = StructureConsider::Vector12d::Zero();
+    StructureConsider::Matrix12d consider_posterior = StructureConsider::Matrix12d::Identity();
+    Matrix6d information = Matrix6d::Zero();  // H of its measurements
+  };
+  PendingUpdate pending_;
 };
 
 // A named starting point of a stereo EKF tracker's options ("preset" in its JSON), applied
