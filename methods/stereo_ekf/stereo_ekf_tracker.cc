@@ -208,9 +208,8 @@ bool StereoEkfTracker::RobustStart(FrameState* state, bool recheck) {
   // minority of it: when most features disagree with every pose, the model does not fit (a wrong
   // focal length) or its noise is too tight, as in RemovePosteriorOutliers, and dropping most
   // of them would fit the pose to a few.
-  const bool majority = 2 * consensus > state->entering;
-  if (!robust_result_.success || consensus < min_consensus ||
-      !(weak_prior || (recheck && majority) || consensus > state->gated)) {
+  const bool takes = weak_prior || consensus > state->gated || (recheck && 2 * consensus > state->entering);
+  if (!robust_result_.success || consensus < min_consensus || !takes) {
     return false;
   }
   // The robust solve explains more features than the gate let through (or the prior is too
@@ -373,19 +372,18 @@ double StereoEkfTracker::IteratedUpdate(const Rigid3d& linearization, bool block
 void StereoEkfTracker::CommitUpdate() {
   ++counters_.updates;
   frame_information_ = pending_.information;
-  const Matrix6d& prior_information = prior_information_;
   if (consider_) {
     filter_.CorrectState(pending_.consider_delta, pending_.consider_posterior);
     consider_->Commit(inliers_);
   } else {
-    filter_.Correct(pending_.delta, pending_.covariance, prior_information);
+    filter_.Correct(pending_.delta, pending_.covariance, prior_information_);
   }
   if (options_.adaptive_process_noise) {
     // The pose correction against its expected size under the model: for a linear-Gaussian
     // update E[d^T P^-1 d] = tr(P^-1 (P - P+)) = 6 - tr(P^-1 P+), P the predicted pose covariance.
     const Matrix6d posterior = filter_.PoseCovariance();
-    const double expected = std::max(6.0 - (prior_information * posterior).trace(), kMinExpectedCorrection);
-    correction_ratio_ = pending_.delta.dot(prior_information * pending_.delta) / expected;
+    const double expected = std::max(6.0 - (prior_information_ * posterior).trace(), kMinExpectedCorrection);
+    correction_ratio_ = pending_.delta.dot(prior_information_ * pending_.delta) / expected;
   }
 }
 

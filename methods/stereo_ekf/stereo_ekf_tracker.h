@@ -24,8 +24,9 @@
 //      features remain, the current pair becomes the reference and the world pose of the
 //      reference is chained.
 // Stages 2 and 4 and the recheck hold the robustness policy beyond the paper (RANSAC start,
-// recheck and re-seeding, health, noise adaptation, widening and velocity decay while lost); the paper preset turns it
-// off as a whole (ApplyPaperPreset), and each part has its own option for ablations.
+// recheck and re-seeding, health, noise adaptation, widening and velocity decay while lost);
+// the paper preset turns it off as a whole (ApplyPaperPreset), and each part has its own option
+// for ablations.
 #pragma once
 
 #include <cmath>
