@@ -3,6 +3,7 @@
 //
 //   measure_frontend [--frames N] [--step K] [--method NAME] [--tracker-config FILE] [--config FILE] [--out DIR]
 //                    [--scene TEXT] [--skip-detectors | --skip-sequences] [--first F] [--detector NAME] [--seed S]
+//                    [--draws N]
 //
 // Four scenes are rendered in memory (render/, default image settings: noise, defocus blur,
 // vignetting, exposure changes; --seed S: another draw of their scenes, motions and image noise,
@@ -35,6 +36,11 @@
 //    per-stage times of steady and new-reference frames. Matches, tracks and endpoint errors
 //    are judged against the scene's lines and, on the paper scene, its bars' second edges
 //    (WithBarSecondEdges).
+// 3. draws.md (--draws N > 1): the sequences' key numbers on draws S, S + 1, ..., S + N - 1 and,
+//    per scene, their median, mean and largest ATE, the median and largest ratio of images to
+//    the noisy run and how many draws are within the 1.5x, the worst draw's correct
+//    matches and tracks, and the frames lost (one draw is one seed; a single one can mislead:
+//    the paper scene's ATE swings over draws, docs/frontend.md).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -51,6 +57,7 @@
 #include "common/table.h"
 #include "dataset/trajectory.h"
 #include "evaluation/metrics.h"
+#include "evaluation/statistics.h"
 #include "frontend/frontend_audit.h"
 #include "frontend/image_tracking.h"
 #include "frontend/parallel_edges.h"
@@ -184,8 +191,118 @@ Trajectory TrackObservations(const TrackerChoice& choice, const StereoSequence& 
   return trajectory;
 }
 
-std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const TrackerChoice& choice,
-                          const FrontEndOptions& common_options) {
+// One scene's measurement: its rows of sequences.md's two tables and the numbers of draws.md.
+struct SequenceResult {
+  std::vector<std::string> row, times_row;
+  double ate_images = 0.0, ate_noisy = 0.0, ate_own_noisy = 0.0;  // m
+  double match_precision = 0.0, track_precision = 0.0, endpoint_rms = 0.0;
+  long matches = 0, tracks = 0;
+  int new_references = 0, lost = 0;
+};
+
+SequenceResult MeasureSequence(const MeasuredScene& scene, const TrackerChoice& choice,
+                               const FrontEndOptions& common_options) {
+  SequenceResult result;
+  const SimulationConfig& config = scene.rendered.config();
+  const SimulatedSequence& sequence = scene.rendered.sequence();
+  nlohmann::json scene_options = ToJson(common_options);
+  scene_options.merge_patch(scene.options);
+  const FrontEndOptions options = FrontEndOptionsFromJson(scene_options, "measure_frontend: " + scene.name);
+  const std::unique_ptr<PoseTracker> tracker = choice.Create();
+  StereoFrontEnd front_end(options, sequence.true_rig);
+  ImageTracker image_tracker(front_end, *tracker, sequence.true_rig);
+  // Judged against the scene's lines and, on the paper scene, its bars' second edges.
+  SimulatedSequence judged = sequence;
+  judged.lines = WithBarSecondEdges(sequence);
+  FrontEndAudit audit(judged);
+  // Identity only (the same 3-D segment, however precisely): looser than detection's 2 px and
+  // 2 deg, which a short segment with sub-pixel endpoint errors can exceed in angle.
+  FrontEndAudit identity(judged, AuditCriteria{3.0, 5.0});
+  StereoSequence observed;  // the front end's output, for the error-model runs below
+  observed.rig = sequence.true_rig;
+  Trajectory from_images;
+  FrontEndStageTimes steady, detecting;
+  int steady_frames = 0, detection_frames = 0, new_references = 0, lost = 0;
+  long described = 0;
+  double tracker_seconds = 0.0;
+  for (int k = 0; k < config.frames; ++k) {
+    const cv::Mat left = scene.rendered.Image(k, 0), right = scene.rendered.Image(k, 1);
+    const double time = sequence.sequence.frames[k].time;
+    const ImageTrackingStep step = image_tracker.Step(left, right, time);
+    audit.AddFrame(k, front_end, *step.frame);
+    identity.AddFrame(k, front_end, *step.frame);
+    observed.frames.push_back(*step.frame);
+    const FrontEndFrameStats& stats = front_end.last_stats();
+    if (stats.detected) {
+      detecting += stats.times;
+      ++detection_frames;
+      described += stats.detected_left + stats.detected_right;
+    } else {
+      steady += stats.times;
+      ++steady_frames;
+    }
+    tracker_seconds += step.tracker_seconds;
+    if (k > 0 && step.output.status == TrackingStatus::kNewReference) ++new_references;
+    if (step.output.status == TrackingStatus::kLost) ++lost;
+    from_images.push_back({time, step.output.cam_from_world.Inverse()});
+  }
+  audit.Finish();
+  identity.Finish();
+  const FrontEndAudit::Result& r = audit.result();
+  const FrontEndAudit::Result& ri = identity.result();
+  const double path = PathLengthM(sequence.ground_truth);
+  const double ate_images = Ate(sequence, from_images);
+  const double ate_perfect = Ate(sequence, TrackObservations(choice, sequence.sequence));
+  // The same observations with Gaussian endpoint noise of the front end's RMS error (the
+  // noise stream differs from the scene's and the motion's: same lines, same poses).
+  SimulationConfig noisy_config = config;
+  noisy_config.noise.model = NoiseModel::kGaussian;
+  noisy_config.noise.endpoint_px = r.EndpointRms();
+  const double ate_noisy = Ate(sequence, TrackObservations(choice, Simulate(noisy_config).sequence));
+  // The front end's own tracks (same lines, ids and frames) with its across-line error replaced:
+  // by none, and by independent Gaussian noise of its RMS (the synthetic protocol's model).
+  const std::uint64_t seed = config.NoiseSeed();
+  const double ate_own_truth =
+      Ate(sequence, TrackObservations(choice, WithErrorReplaced(sequence, judged.lines, observed, 0.0, seed)));
+  const double ate_own_noisy = Ate(
+      sequence, TrackObservations(choice, WithErrorReplaced(sequence, judged.lines, observed, r.EndpointRms(), seed)));
+  const auto f = [](const char* format, double v) { return StringPrintf(format, v); };
+  const auto n = [](long v) { return std::to_string(v); };
+  result.row = {scene.name, n(config.frames), f("%.2f", path), n(detection_frames), n(new_references), n(lost),
+              n(r.matches), n(r.matches_unjudged), f("%.4f", r.MatchPrecision()), f("%.4f", ri.MatchPrecision()),
+              n(r.tracks), n(r.tracks_unjudged), f("%.4f", r.TrackPrecision()), f("%.4f", ri.TrackPrecision()),
+              f("%.1f", r.tracks ? static_cast<double>(r.track_frames) / r.tracks : 0.0),
+              f("%.3f", r.EndpointRms()), f("%.2f", 1e3 * ate_images), f("%.2f", 1e3 * ate_perfect),
+              f("%.2f", 1e3 * ate_noisy), f("%.2f", ate_images / ate_perfect), f("%.2f", ate_images / ate_noisy),
+              f("%.2f", 1e3 * ate_own_truth), f("%.2f", 1e3 * ate_own_noisy), f("%.2f", ate_images / ate_own_noisy)};
+  const auto ms = [&](double s, int count) { return f("%.2f", count ? 1e3 * s / count : 0.0); };
+  result.times_row = {scene.name, n(steady_frames), ms(steady.track, steady_frames), ms(steady.filter, steady_frames),
+                    ms(steady.Total(), steady_frames), n(detection_frames), ms(detecting.detect, detection_frames),
+                    ms(detecting.describe, detection_frames), ms(detecting.match, detection_frames),
+                    ms(detecting.track, detection_frames), ms(detecting.filter, detection_frames),
+                    ms(detecting.Total(), detection_frames), f("%.1f", described ? 1e6 * detecting.describe / described : 0.0),
+                    f("%.0f", detection_frames ? static_cast<double>(described) / detection_frames : 0.0),
+                    ms(tracker_seconds, config.frames)};
+  std::fprintf(stderr,
+               "measure_frontend: %s: ATE images %.2f mm, perfect %.2f mm, noisy %.2f mm, its tracks on the truth "
+               "%.2f mm, + noise %.2f mm\n",
+               scene.name.c_str(), 1e3 * ate_images, 1e3 * ate_perfect, 1e3 * ate_noisy, 1e3 * ate_own_truth,
+               1e3 * ate_own_noisy);
+  result.ate_images = ate_images;
+  result.ate_noisy = ate_noisy;
+  result.ate_own_noisy = ate_own_noisy;
+  result.match_precision = r.MatchPrecision();
+  result.track_precision = r.TrackPrecision();
+  result.endpoint_rms = r.EndpointRms();
+  result.matches = r.matches;
+  result.tracks = r.tracks;
+  result.new_references = new_references;
+  result.lost = lost;
+  return result;
+}
+
+// sequences.md: `results[i]` measured on `scenes[i]`.
+std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const std::vector<SequenceResult>& results) {
   Table table = MarkdownTable(
       {"scene", "frames", "path, m", "detection frames", "new references", "lost", "stereo matches", "not judged",
        "correct (of judged)", "correct, 3 px 5 deg", "tracks (>= 2 frames, judged)", "not judged", "correct",
@@ -198,98 +315,57 @@ std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const Tracker
                                "filter, ms", "new-reference front end, ms", "MSLD per line, us",
                                "lines described per frame", "tracker, ms"},
                               1);
-  for (const MeasuredScene& scene : scenes) {
-    const SimulationConfig& config = scene.rendered.config();
-    const SimulatedSequence& sequence = scene.rendered.sequence();
-    nlohmann::json scene_options = ToJson(common_options);
-    scene_options.merge_patch(scene.options);
-    const FrontEndOptions options = FrontEndOptionsFromJson(scene_options, "measure_frontend: " + scene.name);
-    const std::unique_ptr<PoseTracker> tracker = choice.Create();
-    StereoFrontEnd front_end(options, sequence.true_rig);
-    ImageTracker image_tracker(front_end, *tracker, sequence.true_rig);
-    // Judged against the scene's lines and, on the paper scene, its bars' second edges.
-    SimulatedSequence judged = sequence;
-    judged.lines = WithBarSecondEdges(sequence);
-    FrontEndAudit audit(judged);
-    // Identity only (the same 3-D segment, however precisely): looser than detection's 2 px and
-    // 2 deg, which a short segment with sub-pixel endpoint errors can exceed in angle.
-    FrontEndAudit identity(judged, AuditCriteria{3.0, 5.0});
-    StereoSequence observed;  // the front end's output, for the error-model runs below
-    observed.rig = sequence.true_rig;
-    Trajectory from_images;
-    FrontEndStageTimes steady, detecting;
-    int steady_frames = 0, detection_frames = 0, new_references = 0, lost = 0;
-    long described = 0;
-    double tracker_seconds = 0.0;
-    for (int k = 0; k < config.frames; ++k) {
-      const cv::Mat left = scene.rendered.Image(k, 0), right = scene.rendered.Image(k, 1);
-      const double time = sequence.sequence.frames[k].time;
-      const ImageTrackingStep step = image_tracker.Step(left, right, time);
-      audit.AddFrame(k, front_end, *step.frame);
-      identity.AddFrame(k, front_end, *step.frame);
-      observed.frames.push_back(*step.frame);
-      const FrontEndFrameStats& stats = front_end.last_stats();
-      if (stats.detected) {
-        detecting += stats.times;
-        ++detection_frames;
-        described += stats.detected_left + stats.detected_right;
-      } else {
-        steady += stats.times;
-        ++steady_frames;
-      }
-      tracker_seconds += step.tracker_seconds;
-      if (k > 0 && step.output.status == TrackingStatus::kNewReference) ++new_references;
-      if (step.output.status == TrackingStatus::kLost) ++lost;
-      from_images.push_back({time, step.output.cam_from_world.Inverse()});
-    }
-    audit.Finish();
-    identity.Finish();
-    const FrontEndAudit::Result& r = audit.result();
-    const FrontEndAudit::Result& ri = identity.result();
-    const double path = PathLengthM(sequence.ground_truth);
-    const double ate_images = Ate(sequence, from_images);
-    const double ate_perfect = Ate(sequence, TrackObservations(choice, sequence.sequence));
-    // The same observations with Gaussian endpoint noise of the front end's RMS error (the
-    // noise stream differs from the scene's and the motion's: same lines, same poses).
-    SimulationConfig noisy_config = config;
-    noisy_config.noise.model = NoiseModel::kGaussian;
-    noisy_config.noise.endpoint_px = r.EndpointRms();
-    const double ate_noisy = Ate(sequence, TrackObservations(choice, Simulate(noisy_config).sequence));
-    // The front end's own tracks (same lines, ids and frames) with its across-line error replaced:
-    // by none, and by independent Gaussian noise of its RMS (the synthetic protocol's model).
-    const std::uint64_t seed = config.NoiseSeed();
-    const double ate_own_truth =
-        Ate(sequence, TrackObservations(choice, WithErrorReplaced(sequence, judged.lines, observed, 0.0, seed)));
-    const double ate_own_noisy = Ate(
-        sequence, TrackObservations(choice, WithErrorReplaced(sequence, judged.lines, observed, r.EndpointRms(), seed)));
-    const auto f = [](const char* format, double v) { return StringPrintf(format, v); };
-    const auto n = [](long v) { return std::to_string(v); };
-    table.AddRow({scene.name, n(config.frames), f("%.2f", path), n(detection_frames), n(new_references), n(lost),
-                  n(r.matches), n(r.matches_unjudged), f("%.4f", r.MatchPrecision()), f("%.4f", ri.MatchPrecision()),
-                  n(r.tracks), n(r.tracks_unjudged), f("%.4f", r.TrackPrecision()), f("%.4f", ri.TrackPrecision()),
-                  f("%.1f", r.tracks ? static_cast<double>(r.track_frames) / r.tracks : 0.0),
-                  f("%.3f", r.EndpointRms()), f("%.2f", 1e3 * ate_images), f("%.2f", 1e3 * ate_perfect),
-                  f("%.2f", 1e3 * ate_noisy), f("%.2f", ate_images / ate_perfect), f("%.2f", ate_images / ate_noisy),
-                  f("%.2f", 1e3 * ate_own_truth), f("%.2f", 1e3 * ate_own_noisy), f("%.2f", ate_images / ate_own_noisy)});
-    const auto ms = [&](double s, int count) { return f("%.2f", count ? 1e3 * s / count : 0.0); };
-    times.AddRow({scene.name, n(steady_frames), ms(steady.track, steady_frames), ms(steady.filter, steady_frames),
-                  ms(steady.Total(), steady_frames), n(detection_frames), ms(detecting.detect, detection_frames),
-                  ms(detecting.describe, detection_frames), ms(detecting.match, detection_frames),
-                  ms(detecting.track, detection_frames), ms(detecting.filter, detection_frames),
-                  ms(detecting.Total(), detection_frames), f("%.1f", described ? 1e6 * detecting.describe / described : 0.0),
-                  f("%.0f", detection_frames ? static_cast<double>(described) / detection_frames : 0.0),
-                  ms(tracker_seconds, config.frames)});
-    std::fprintf(stderr,
-                 "measure_frontend: %s: ATE images %.2f mm, perfect %.2f mm, noisy %.2f mm, its tracks on the truth "
-                 "%.2f mm, + noise %.2f mm\n",
-                 scene.name.c_str(), 1e3 * ate_images, 1e3 * ate_perfect, 1e3 * ate_noisy, 1e3 * ate_own_truth,
-                 1e3 * ate_own_noisy);
+  for (const SequenceResult& result : results) {
+    table.AddRow(result.row);
+    times.AddRow(result.times_row);
   }
   std::string notes;
   for (const MeasuredScene& scene : scenes) {
     if (!scene.options.empty()) notes += "\nFront-end options of " + scene.name + ": `" + scene.options.dump() + "`.\n";
   }
   return table.Markdown() + notes + "\nPer-stage times (wall clock inside the run, single thread):\n\n" + times.Markdown();
+}
+
+// draws.md: `draws[d][i]` measured on scene i of draw `first_seed + d`; per draw its row, then
+// per scene the statistics over the draws (the bound asks images / noisy <= 1.5).
+std::string DrawTable(const std::deque<MeasuredScene>& scenes, std::uint64_t first_seed,
+                      const std::vector<std::vector<SequenceResult>>& draws) {
+  Table table = MarkdownTable({"scene", "draw (--seed)", "new references", "lost", "stereo matches", "correct",
+                               "tracks", "correct", "endpoint RMS, px", "ATE images, mm", "ATE noisy (same RMS), mm",
+                               "ratio images / noisy", "ratio images / its tracks noisy"},
+                              1);
+  Table summary = MarkdownTable({"scene", "draws", "ATE images median, mm", "mean, mm", "max, mm",
+                                 "ratio images / noisy median", "max", "draws with ratio <= 1.5",
+                                 "ratio images / its tracks noisy median", "stereo matches correct, worst draw",
+                                 "tracks correct, worst draw", "frames lost"},
+                                1);
+  const auto f = [](const char* format, double v) { return StringPrintf(format, v); };
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    std::vector<double> ate, ratio, own_ratio;
+    double worst_matches = 1.0, worst_tracks = 1.0;
+    int lost = 0, within = 0;
+    for (size_t d = 0; d < draws.size(); ++d) {
+      const SequenceResult& r = draws[d][i];
+      table.AddRow({scenes[i].name, std::to_string(first_seed + d), std::to_string(r.new_references),
+                    std::to_string(r.lost), std::to_string(r.matches), f("%.4f", r.match_precision),
+                    std::to_string(r.tracks), f("%.4f", r.track_precision), f("%.3f", r.endpoint_rms),
+                    f("%.2f", 1e3 * r.ate_images), f("%.2f", 1e3 * r.ate_noisy), f("%.2f", r.ate_images / r.ate_noisy),
+                    f("%.2f", r.ate_images / r.ate_own_noisy)});
+      ate.push_back(r.ate_images);
+      ratio.push_back(r.ate_images / r.ate_noisy);
+      own_ratio.push_back(r.ate_images / r.ate_own_noisy);
+      worst_matches = std::min(worst_matches, r.match_precision);
+      worst_tracks = std::min(worst_tracks, r.track_precision);
+      lost += r.lost;
+      within += ratio.back() <= 1.5;
+    }
+    const ErrorStatistics a = ComputeStatistics(ate), q = ComputeStatistics(ratio);
+    summary.AddRow({scenes[i].name, std::to_string(draws.size()), f("%.2f", 1e3 * a.median), f("%.2f", 1e3 * a.mean),
+                    f("%.2f", 1e3 * a.max), f("%.2f", q.median), f("%.2f", q.max), std::to_string(within),
+                    f("%.2f", ComputeStatistics(own_ratio).median), f("%.4f", worst_matches), f("%.4f", worst_tracks),
+                    std::to_string(lost)});
+  }
+  return summary.Markdown() + "\nEach draw:\n\n" + table.Markdown();
 }
 
 }  // namespace
@@ -302,7 +378,7 @@ int main(int argc, char** argv) {
   std::string method = "trifocal_line_ekf", tracker_config_path, out, config_path;
   bool skip_detectors = false, skip_sequences = false;
   std::string only_scene, only_detector;
-  int first = 0;
+  int first = 0, draws = 1;
   std::uint64_t seed = 1;
   std::string seed_text;
   app.add_option("--frames", frames, "Frames per sequence")->check(CLI::Range(2, 100000));
@@ -317,6 +393,10 @@ int main(int argc, char** argv) {
   // Read as text (ParseSeedOption).
   app.add_option("--seed", seed_text, "Simulation seed of every scene (another draw of the scenes, motions and image noise)");
   app.add_option("--detector", only_detector, "Detector table: only this detector (lsd, edlines, ...)");
+  app.add_option("--draws", draws,
+                 "Sequences: also draws --seed + 1, ..., --seed + N - 1, each draw's numbers and their statistics "
+                 "in draws.md (sequences.md and detectors.md: the first draw)")
+      ->check(CLI::Range(1, 100000));
   const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend", [&] {
     if (app.count("--seed") > 0) seed = ParseSeedOption("--seed", seed_text);
   });
@@ -337,16 +417,31 @@ int main(int argc, char** argv) {
     const std::string config_note = flags + contents;
     const std::string selection = (first ? StringPrintf(" --first %d", first) : std::string()) +
                                   (seed != 1 ? " --seed " + std::to_string(seed) : std::string()) +
+                                  (draws != 1 ? StringPrintf(" --draws %d", draws) : std::string()) +
                                   (only_detector.empty() ? "" : " --detector " + only_detector);
     const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s%s`.\n\n",
                                             frames, step, method.c_str(), selection.c_str(), config_note.c_str());
     const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, first, step, only_detector, options);
-    const std::string sequences = skip_sequences ? "" : header + SequenceTable(scenes, choice, options);
-    std::printf("%s\n%s", detectors.c_str(), sequences.c_str());
+    std::string sequences, draw_table;
+    if (!skip_sequences) {
+      std::vector<std::vector<SequenceResult>> results(draws);
+      for (int d = 0; d < draws; ++d) {
+        // Each draw's scenes are simulated (and rendered) only while it is measured.
+        const std::deque<MeasuredScene> drawn = d == 0 ? std::deque<MeasuredScene>() : Scenes(frames, only_scene, seed + d);
+        for (const MeasuredScene& scene : d == 0 ? scenes : drawn) {
+          results[d].push_back(MeasureSequence(scene, choice, options));
+        }
+      }
+      sequences = header + SequenceTable(scenes, results[0]);
+      if (draws > 1) draw_table = header + DrawTable(scenes, seed, results);
+    }
+    std::printf("%s\n%s\n%s", detectors.c_str(), sequences.c_str(), draw_table.c_str());
     if (!out.empty()) {
+      // Every output or none: all are made before the first is written (each atomically).
       std::filesystem::create_directories(out);
       if (!skip_detectors) WriteTextFileAtomically(out + "/detectors.md", detectors);
       if (!skip_sequences) WriteTextFileAtomically(out + "/sequences.md", sequences);
+      if (draws > 1) WriteTextFileAtomically(out + "/draws.md", draw_table);
     }
     return 0;
   });

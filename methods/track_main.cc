@@ -1,6 +1,7 @@
 // track: runs one registered tracker over a stereo-lines/1 sequence and writes its trajectory.
 //
 //   track --method trifocal_line_ekf --input seq.json --output traj.tum [--config tracker.json]
+//         (--tracker-config: the same option under the name track_images and measure_frontend use)
 //         [--kitti traj.kitti] [--log frames.csv] [--print-config]
 //   track --list
 //   track --method NAME --list-options
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Run a pose tracker over a stereo-lines/1 sequence and write its trajectory (TUM, camera-to-world)."};
   std::string method, input, output, config_path, kitti_path, log_path;
   bool list = false, print_config = false, list_options = false;
-  AddTrackerOptions(app, &method, &config_path, "--config,-c");
+  AddTrackerOptions(app, &method, &config_path, "--config,-c,--tracker-config");
   app.add_option("--input,-i", input, "Observations, stereo-lines/1 JSON");
   app.add_option("--output,-o", output, "Trajectory to write, TUM format");
   app.add_option("--kitti", kitti_path, "Also write the trajectory in KITTI format");

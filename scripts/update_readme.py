@@ -254,6 +254,34 @@ def detector_recall(r):
     return "%s and %s" % (", ".join(found[:-1]), found[-1])
 
 
+# The rows of the ten-draw table (measure_frontend --draws): (folder under results/, scene, label).
+FRONTEND_DRAWS = (("frontend", "room 752x480 (loop)", "room loop, 752 × 480"),
+                  ("frontend", "corridor 640x480 (forward)", "corridor walk, 640 × 480"),
+                  ("frontend", "paper scene 640x480 (paper motion)", "paper scene"),
+                  ("frontend/paper_scene_tracker", "paper scene 640x480 (paper motion)",
+                   "paper scene, `frontend/tracker_configs/paper_scene.json`"),
+                  ("frontend", "room 640x480 (loop, default rig)", "room loop, default 640 × 480 rig"))
+
+
+def frontend_draws_table(r):
+    """trifocal_line_ekf from rendered images over ten draws of each scene (results/frontend/draws.md)."""
+    lines = ["| scene, tracker options | draws | ATE from the images, median / max | images / the same tracker on "
+             "the truth with the front end's noise (paper scene: the synthetic protocol), median / max | draws within 1.5× "
+             "| stereo matches correct, worst draw | tracks correct, worst draw |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for folder, scene, label in FRONTEND_DRAWS:
+        path, rows = r.markdown_rows(*folder.split("/"), "draws.md")
+        row = [x for x in rows if x.get("scene") == scene]
+        if not row or "ratio images / noisy median" not in row[0]:
+            raise ResultsError("%s: no summary row of '%s'" % (path, scene))
+        x = row[0]
+        lines.append("| %s | %s | %s / %s mm | %s / %s | %s | %s %% | %s %% |" % (
+            label, x["draws"], sig(float(x["ATE images median, mm"])), sig(float(x["max, mm"])),
+            sig(float(x["ratio images / noisy median"]), 2), sig(float(x["max"]), 2), x["draws with ratio <= 1.5"], sig(100 * float(x["stereo matches correct, worst draw"])),
+            sig(100 * float(x["tracks correct, worst draw"]))))
+    return "\n" + "\n".join(lines) + "\n"
+
+
 # (experiment, run title, method label -> name shown; None = every method but the ablation rows).
 # The best setting measured (docs/long_sequences.md) follows each loop's default rows.
 # The held-out seeds (long_room_heldout) check the settings chosen on the issue's.
@@ -436,6 +464,7 @@ GENERATORS = {
     "long_runs_table": long_runs_table,
     "datasets_sentence": datasets_sentence,
     "detector_recall": detector_recall,
+    "frontend_draws_table": frontend_draws_table,
     "feature_count_table": feature_count_table,
     "faithful_fixed_r": faithful_fixed_r,
     "fixed_endpoints": endpoints_comparison("fixed"),

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <sys/stat.h>
 
@@ -279,6 +281,49 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
   }
 }
 
+// A table cell of a Markdown row: the `column`-th between the pipes.
+std::string Cell(const std::string& row, int column) {
+  std::stringstream cells(row);
+  std::string cell;
+  for (int c = 0; c <= column + 1; ++c) std::getline(cells, cell, '|');
+  return cell.substr(cell.find_first_not_of(' '), cell.find_last_not_of(' ') - cell.find_first_not_of(' ') + 1);
+}
+
+// The lines of `path` that start with `prefix`.
+std::vector<std::string> RowsStartingWith(const std::string& path, const std::string& prefix) {
+  std::ifstream in(path);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(prefix, 0) == 0) rows.push_back(line);
+  }
+  return rows;
+}
+
+TEST_F(EndToEnd, MeasureFrontendOverSeveralDraws) {
+  const Result r = RunCommand(Bin("measure_frontend") + " --frames 12 --skip-detectors --scene paper --seed 3 --draws 2 --out " +
+                              Path("m"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(Path("m/detectors.md")));
+  const std::string scene = "| paper scene";
+  const std::vector<std::string> first = RowsStartingWith(Path("m/sequences.md"), scene);
+  const std::vector<std::string> draws = RowsStartingWith(Path("m/draws.md"), scene);
+  // The summary, then each draw: --seed 3 and 4, the first of them the draw of sequences.md.
+  ASSERT_EQ(first.size(), 2u);  // its row in the accuracy table and in the times table
+  ASSERT_EQ(draws.size(), 3u) << r.output;
+  EXPECT_EQ(Cell(draws[0], 1), "2");
+  EXPECT_EQ(Cell(draws[1], 1), "3");
+  EXPECT_EQ(Cell(draws[2], 1), "4");
+  EXPECT_EQ(Cell(draws[1], 9), Cell(first[0], 16)) << "ATE images of draw 3";
+  const double a = std::stod(Cell(draws[1], 9)), b = std::stod(Cell(draws[2], 9));
+  EXPECT_NE(a, b) << "two draws of the scene gave the same ATE";
+  EXPECT_NEAR(std::stod(Cell(draws[0], 4)), std::max(a, b), 0.006) << "the largest ATE";
+  EXPECT_NEAR(std::stod(Cell(draws[0], 3)), 0.5 * (a + b), 0.006) << "the mean ATE";
+  std::ifstream header(Path("m/draws.md"));
+  std::string line;
+  std::getline(header, line);
+  EXPECT_NE(line.find("--seed 3 --draws 2"), std::string::npos) << line;
+}
+
 void ExpectOneErrorLine(const std::string& output, const std::string& program = "track") {
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   EXPECT_EQ(output.rfind(program + ": error: ", 0), 0u) << output;
@@ -295,6 +340,10 @@ TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
   r = RunCommand(Bin("track") + " --method trifocal_line_ekf --config " + Path("bad.json") + " --print-config");
   EXPECT_EQ(r.exit_code, 1);
   ExpectOneErrorLine(r.output);
+  EXPECT_NE(r.output.find(Path("bad.json") + ": key 'filter.max_iterations'"), std::string::npos) << r.output;
+  // The same options under the name track_images and measure_frontend give them.
+  r = RunCommand(Bin("track") + " --method trifocal_line_ekf --tracker-config " + Path("bad.json") + " --print-config");
+  EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find(Path("bad.json") + ": key 'filter.max_iterations'"), std::string::npos) << r.output;
   r = RunCommand(Bin("track") + " --method trifocal_line_ekf --input " + Path("missing.json") + " --output " + Path("o.tum"));
   EXPECT_EQ(r.exit_code, 1);
