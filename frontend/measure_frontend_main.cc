@@ -24,7 +24,8 @@
 //    photometrically visible (frontend_audit.h: the step across them in the same image rendered
 //    without sensor noise at least the noise of a two-pixel difference).
 // 2. sequences.md: the front end paired with the tracker over each whole sequence (the paper
-//    scene with its own disparity range and match verification, PaperSceneOptions): stereo
+//    scene with its own disparity range and match verification, PaperSceneOptions, and
+//    --config's options over them): stereo
 //    matches and temporal tracks correct (same 3-D segment; frontend_audit.h; within 2 px and
 //    2 deg, and for identity alone within 3 px and 5 deg), endpoint error of
 //    the output lines, the tracker's ATE from the images against the same tracker on the perfect
@@ -74,12 +75,14 @@ struct MeasuredScene {
   MeasuredScene(std::string name, const nlohmann::json& config) : name(std::move(name)), rendered(config) {}
   std::string name;
   RenderedSequence rendered;
-  // The scene's own front-end options, over --config's (JSON merge patch).
+  // Its front-end options over the defaults (a JSON merge patch): the scene's own
+  // (PaperSceneOptions) with --config's over them (what a user asks for explicitly wins).
   nlohmann::json options = nlohmann::json::object();
 };
 
 // A deque: each scene's renderer refers to its own sequence, which must not move.
-std::deque<MeasuredScene> Scenes(int frames, const std::string& only_scene, std::uint64_t seed) {
+std::deque<MeasuredScene> Scenes(int frames, const std::string& only_scene, std::uint64_t seed,
+                                 const nlohmann::json& config_options) {
   std::vector<std::pair<std::string, nlohmann::json>> all = {
       {"room 752x480 (loop)", RenderedRoomConfig(frames, true)},
       {"corridor 640x480 (forward)", RenderedCorridorConfig(frames)},
@@ -91,6 +94,7 @@ std::deque<MeasuredScene> Scenes(int frames, const std::string& only_scene, std:
     json["seed"] = seed;
     scenes.emplace_back(name, json);
     if (name.rfind("paper", 0) == 0) scenes.back().options = PaperSceneOptions(scenes.back().rendered.rig());
+    scenes.back().options.merge_patch(config_options);
   }
   return scenes;
 }
@@ -206,15 +210,14 @@ struct SequenceResult {
   double tracker_seconds = 0.0;
 };
 
-SequenceResult MeasureSequence(const MeasuredScene& scene, const TrackerChoice& choice,
-                               const FrontEndOptions& common_options) {
+SequenceResult MeasureSequence(const MeasuredScene& scene, const TrackerChoice& choice) {
   const SimulationConfig& config = scene.rendered.config();
   const SimulatedSequence& sequence = scene.rendered.sequence();
   SequenceResult result;
   result.scene = scene.name;
   result.frames = config.frames;
   result.path_m = PathLengthM(sequence.ground_truth);
-  nlohmann::json scene_options = ToJson(common_options);
+  nlohmann::json scene_options = ToJson(FrontEndOptions());
   scene_options.merge_patch(scene.options);
   const FrontEndOptions options = FrontEndOptionsFromJson(scene_options, "measure_frontend: " + scene.name);
   const std::unique_ptr<PoseTracker> tracker = choice.Create();
@@ -389,7 +392,8 @@ int main(int argc, char** argv) {
   app.add_option("--step", step, "Detector table: every step-th frame")->check(CLI::Range(1, 100000));
   app.add_option("--out", out, "Write detectors.md and sequences.md into this folder");
   AddTrackerOptions(app, &method, &tracker_config_path, "--tracker-config");
-  app.add_option("--config", config_path, "Front-end options, JSON (docs/frontend.md)");
+  app.add_option("--config", config_path,
+                 "Front-end options, JSON (docs/frontend.md), over each scene's own (the paper scene's)");
   app.add_flag("--skip-detectors", skip_detectors, "Only the sequences");
   app.add_flag("--skip-sequences", skip_sequences, "Only the detectors");
   app.add_option("--scene", only_scene, "Only the scenes whose name contains this (room, corridor, paper)");
@@ -407,33 +411,45 @@ int main(int argc, char** argv) {
   if (exit_code >= 0) return exit_code;
   return RunProgram("measure_frontend", [&] {
     cv::setNumThreads(1);
-    const FrontEndOptions options = FrontEndOptionsFromJson(ReadOptionsFile(config_path), config_path);
+    const nlohmann::json config_options = ReadOptionsFile(config_path);
+    const FrontEndOptions options = FrontEndOptionsFromJson(config_options, config_path);
     const TrackerChoice choice{method, ReadOptionsFile(tracker_config_path), tracker_config_path};
     choice.Create();  // an unknown tracker or invalid options fail before the work
-    const std::deque<MeasuredScene> scenes = Scenes(frames, only_scene, seed);
+    const std::deque<MeasuredScene> scenes = Scenes(frames, only_scene, seed, config_options);
     // The options measured, when not the defaults: the configs' file names, then their contents.
-    std::string flags, contents;
-    for (const auto& [flag, path] : {std::pair{"--tracker-config", tracker_config_path}, {"--config", config_path}}) {
-      if (path.empty()) continue;
-      flags += std::string(" ") + flag + " " + std::filesystem::path(path).filename().string();
-      contents += (contents.empty() ? "` with `" : "`, `") + ReadJsonFile(path).dump();
-    }
-    const std::string config_note = flags + contents;
-    const std::string selection = (first ? StringPrintf(" --first %d", first) : std::string()) +
-                                  (seed != 1 ? " --seed " + std::to_string(seed) : std::string()) +
-                                  (draws != 1 ? StringPrintf(" --draws %d", draws) : std::string()) +
-                                  (only_detector.empty() ? "" : " --detector " + only_detector);
-    const std::string header = StringPrintf("Generated by `measure_frontend --frames %d --step %d --method %s%s%s`.\n\n",
-                                            frames, step, method.c_str(), selection.c_str(), config_note.c_str());
-    const std::string detectors = skip_detectors ? "" : header + DetectorTable(scenes, first, step, only_detector, options);
+    const auto config_note = [&](bool with_tracker) {
+      std::string flags, contents;
+      for (const auto& [flag, path] :
+           {std::pair{"--tracker-config", with_tracker ? tracker_config_path : ""}, {"--config", config_path}}) {
+        if (path.empty()) continue;
+        flags += std::string(" ") + flag + " " + std::filesystem::path(path).filename().string();
+        contents += (contents.empty() ? "` with `" : "`, `") + ReadJsonFile(path).dump();
+      }
+      return flags + contents;
+    };
+    // Each file's header names the options its numbers depend on: the detector table not on the
+    // tracker or the draws, the sequences not on --step, --first or --detector.
+    const std::string seed_flag = seed != 1 ? " --seed " + std::to_string(seed) : std::string();
+    const std::string detector_header =
+        StringPrintf("Generated by `measure_frontend --frames %d --step %d%s%s%s%s`.\n\n", frames, step,
+                     first ? StringPrintf(" --first %d", first).c_str() : "", seed_flag.c_str(),
+                     only_detector.empty() ? "" : (" --detector " + only_detector).c_str(),
+                     config_note(false).c_str());
+    const std::string header =
+        StringPrintf("Generated by `measure_frontend --frames %d --method %s%s%s%s`.\n\n", frames, method.c_str(),
+                     seed_flag.c_str(), draws != 1 ? StringPrintf(" --draws %d", draws).c_str() : "",
+                     config_note(true).c_str());
+    const std::string detectors =
+        skip_detectors ? "" : detector_header + DetectorTable(scenes, first, step, only_detector, options);
     std::string sequences, draw_table;
     if (!skip_sequences) {
       std::vector<std::vector<SequenceResult>> results(draws);
       for (int d = 0; d < draws; ++d) {
         // Each draw's scenes are simulated (and rendered) only while it is measured.
-        const std::deque<MeasuredScene> drawn = d == 0 ? std::deque<MeasuredScene>() : Scenes(frames, only_scene, seed + d);
+        const std::deque<MeasuredScene> drawn =
+            d == 0 ? std::deque<MeasuredScene>() : Scenes(frames, only_scene, seed + d, config_options);
         for (const MeasuredScene& scene : d == 0 ? scenes : drawn) {
-          results[d].push_back(MeasureSequence(scene, choice, options));
+          results[d].push_back(MeasureSequence(scene, choice));
         }
       }
       sequences = header + SequenceTable(scenes, results[0]);
@@ -446,6 +462,14 @@ int main(int argc, char** argv) {
       if (!skip_detectors) WriteTextFileAtomically(out + "/detectors.md", detectors);
       if (!skip_sequences) WriteTextFileAtomically(out + "/sequences.md", sequences);
       if (draws > 1) WriteTextFileAtomically(out + "/draws.md", draw_table);
+      // A draws.md of an earlier run would no longer hold this sequences.md's first draw.
+      const std::string stale_draws = out + "/draws.md";
+      if (!skip_sequences && draws == 1 && std::filesystem::exists(stale_draws)) {
+        std::filesystem::remove(stale_draws);
+        std::fprintf(stderr,
+                     "measure_frontend: removed %s of an earlier run (its first draw is not this sequences.md's)\n",
+                     stale_draws.c_str());
+      }
     }
     return 0;
   });

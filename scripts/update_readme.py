@@ -259,13 +259,13 @@ FRONTEND_DRAWS = (("frontend", "room 752x480 (loop)", "room loop, 752 × 480"),
                   ("frontend", "corridor 640x480 (forward)", "corridor walk, 640 × 480"),
                   ("frontend", "paper scene 640x480 (paper motion)", "paper scene"),
                   ("frontend/paper_scene_tracker", "paper scene 640x480 (paper motion)",
-                   "paper scene, `frontend/tracker_configs/paper_scene.json`"),
+                   "paper scene, `paper_scene.json` of `frontend/tracker_configs/` and `frontend/frontend_configs/`"),
                   ("frontend", "room 640x480 (loop, default rig)", "room loop, default 640 × 480 rig"))
 
 
 def frontend_draws_table(r):
     """trifocal_line_ekf from rendered images over ten draws of each scene (results/frontend/draws.md)."""
-    lines = ["| scene, tracker options | draws | ATE from the images, median / max | images / the same tracker on "
+    lines = ["| scene, options | draws | ATE from the images, median / max | images / the same tracker on "
              "the truth with the front end's noise (paper scene: the synthetic protocol), median / max | draws within 1.5× "
              "| stereo matches correct, worst draw | tracks correct, worst draw |",
              "|---|---:|---:|---:|---:|---:|---:|"]

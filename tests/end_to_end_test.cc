@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "common/csv.h"
 #include "common/json_reader.h"
+#include "common/source_tree.h"
 #include "dataset/trajectory.h"
 #include "frontend/frontend_audit.h"
 
@@ -322,6 +324,34 @@ TEST_F(EndToEnd, MeasureFrontendOverSeveralDraws) {
   std::string line;
   std::getline(header, line);
   EXPECT_NE(line.find("--seed 3 --draws 2"), std::string::npos) << line;
+  EXPECT_EQ(line.find("--step"), std::string::npos) << "the sequences do not depend on the detector table's step: " << line;
+  // One draw into the same folder: the earlier draws.md, whose first draw is no longer this
+  // sequences.md's, goes.
+  const Result again =
+      RunCommand(Bin("measure_frontend") + " --frames 12 --skip-detectors --scene paper --seed 4 --out " + Path("m"));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_FALSE(fs::exists(Path("m/draws.md"))) << again.output;
+  EXPECT_EQ(RowsStartingWith(Path("m/sequences.md"), scene).size(), 2u);
+  // --config's front-end options go over the scene's own (PaperSceneOptions: three earlier
+  // pairs), and the note names the options the scene ran with; the paper scene's shipped
+  // front-end options are valid and reach it.
+  {
+    std::ofstream(Path("one_pair.json")) << R"({"matching": {"previous_pairs": 1}})";
+  }
+  for (const auto& [config, expected] :
+       {std::pair{Path("one_pair.json"), std::string(R"("previous_pairs":1)")},
+        {SourceDir() + "/frontend/frontend_configs/paper_scene.json", std::string(R"("msld_ratio":0.9)")}}) {
+    const Result run = RunCommand(Bin("measure_frontend") + " --frames 4 --skip-detectors --scene paper --config " + config +
+                                  " --out " + Path("c"));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    std::ifstream in(Path("c/sequences.md"));
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t note = text.find("Front-end options of paper scene");
+    ASSERT_NE(note, std::string::npos) << text;
+    const std::string note_line = text.substr(note, text.find('\n', note) - note);
+    EXPECT_NE(note_line.find(expected), std::string::npos) << note_line;
+    EXPECT_NE(note_line.find(R"("min_disparity_px")"), std::string::npos) << "the scene's own options: " << note_line;
+  }
 }
 
 void ExpectOneErrorLine(const std::string& output, const std::string& program = "track") {
