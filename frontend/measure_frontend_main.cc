@@ -25,17 +25,17 @@
 //    without sensor noise at least the noise of a two-pixel difference).
 // 2. sequences.md: the front end paired with the tracker over each whole sequence (the paper
 //    scene with its own disparity range and match verification, PaperSceneOptions, and
-//    --config's options over them): stereo matches and temporal tracks correct (same 3-D segment; frontend_audit.h; within 2 px and
-//    2 deg, and for identity alone within 3 px and 5 deg), endpoint error of
-//    the output lines, the tracker's ATE from the images against the same tracker on the perfect
-//    observations of the sequence (the visible ground-truth edges, noise-free) and on those
-//    observations with Gaussian endpoint noise at the front end's measured RMS endpoint error,
-//    and on the front end's own tracks with their across-line error replaced by none and by
-//    that Gaussian noise (WithErrorReplaced: same lines, ids and frames as the run, so that the
-//    comparison separates the front end's precision from the lines it supplies), and the
-//    per-stage times of steady and new-reference frames. Matches, tracks and endpoint errors
-//    are judged against the scene's lines and, on the paper scene, its bars' second edges
-//    (WithBarSecondEdges).
+//    --config's options over them): stereo matches and temporal tracks correct (same 3-D
+//    segment; frontend_audit.h; within 2 px and 2 deg, and for identity alone within 3 px and
+//    5 deg), endpoint error of the output lines, the tracker's ATE from the images against the
+//    same tracker on the perfect observations of the sequence (the visible ground-truth edges,
+//    noise-free) and on those observations with Gaussian endpoint noise at the front end's
+//    measured RMS endpoint error, and on the front end's own tracks with their across-line
+//    error replaced by none and by that Gaussian noise (WithErrorReplaced: same lines, ids and
+//    frames as the run, so that the comparison separates the front end's precision from the
+//    lines it supplies), and the per-stage times of steady and new-reference frames. Matches,
+//    tracks and endpoint errors are judged against the scene's lines and, on the paper scene,
+//    its bars' second edges (WithBarSecondEdges).
 // 3. draws.md (--draws N > 1): the sequences' key numbers on draws S, S + 1, ..., S + N - 1 and,
 //    per scene, their median, mean and largest ATE, the median and largest ratio of images to
 //    the noisy run and how many draws are within the 1.5x, the worst draw's correct
@@ -96,10 +96,9 @@ std::deque<MeasuredScene> Scenes(int frames, const std::string& only_scene, std:
     scenes.emplace_back(name, json);
     if (name.rfind("paper", 0) == 0) scenes.back().options = PaperSceneOptions(scenes.back().rendered.rig());
     scenes.back().options.merge_patch(config_options);
-    nlohmann::json merged = ToJson(FrontEndOptions());
-    merged.merge_patch(scenes.back().options);
+    // Keys it does not hold keep their defaults.
     scenes.back().front_end =
-        FrontEndOptionsFromJson(merged, name + ", --config over its own options");
+        FrontEndOptionsFromJson(scenes.back().options, name + ", --config over its own options");
   }
   return scenes;
 }
@@ -213,6 +212,9 @@ struct SequenceResult {
   int steady_frames = 0, detection_frames = 0, new_references = 0, lost = 0;
   long described = 0;  // lines described on the detection frames
   double tracker_seconds = 0.0;
+  // The ATE from the images over that of the noisy observations and of its own noisy tracks.
+  double RatioToNoisy() const { return ate_images / ate_noisy; }
+  double RatioToOwnNoisy() const { return ate_images / ate_own_noisy; }
 };
 
 SequenceResult MeasureSequence(const MeasuredScene& scene, const TrackerChoice& choice) {
@@ -311,8 +313,8 @@ std::string SequenceTable(const std::deque<MeasuredScene>& scenes, const std::ve
                   f("%.1f", r.tracks ? static_cast<double>(r.track_frames) / r.tracks : 0.0),
                   f("%.3f", r.EndpointRms()), f("%.2f", 1e3 * m.ate_images), f("%.2f", 1e3 * m.ate_perfect),
                   f("%.2f", 1e3 * m.ate_noisy), f("%.2f", m.ate_images / m.ate_perfect),
-                  f("%.2f", m.ate_images / m.ate_noisy), f("%.2f", 1e3 * m.ate_own_truth),
-                  f("%.2f", 1e3 * m.ate_own_noisy), f("%.2f", m.ate_images / m.ate_own_noisy)});
+                  f("%.2f", m.RatioToNoisy()), f("%.2f", 1e3 * m.ate_own_truth),
+                  f("%.2f", 1e3 * m.ate_own_noisy), f("%.2f", m.RatioToOwnNoisy())});
     const auto ms = [&](double s, int count) { return f("%.2f", count ? 1e3 * s / count : 0.0); };
     const FrontEndStageTimes& steady = m.steady;
     const FrontEndStageTimes& detecting = m.detecting;
@@ -359,10 +361,10 @@ std::string DrawTable(std::uint64_t first_seed, const std::vector<std::vector<Se
                     std::to_string(m.audit.matches), f("%.4f", m.audit.MatchPrecision()),
                     std::to_string(m.audit.tracks), f("%.4f", m.audit.TrackPrecision()),
                     f("%.3f", m.audit.EndpointRms()), f("%.2f", 1e3 * m.ate_images), f("%.2f", 1e3 * m.ate_noisy),
-                    f("%.2f", m.ate_images / m.ate_noisy), f("%.2f", m.ate_images / m.ate_own_noisy)});
+                    f("%.2f", m.RatioToNoisy()), f("%.2f", m.RatioToOwnNoisy())});
       ate.push_back(m.ate_images);
-      ratio.push_back(m.ate_images / m.ate_noisy);
-      own_ratio.push_back(m.ate_images / m.ate_own_noisy);
+      ratio.push_back(m.RatioToNoisy());
+      own_ratio.push_back(m.RatioToOwnNoisy());
       worst_matches = std::min(worst_matches, m.audit.MatchPrecision());
       worst_tracks = std::min(worst_tracks, m.audit.TrackPrecision());
       lost += m.lost;

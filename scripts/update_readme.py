@@ -277,8 +277,8 @@ def frontend_draws_table(r):
         x = row[0]
         lines.append("| %s | %s | %s / %s mm | %s / %s | %s | %s %% | %s %% |" % (
             label, x["draws"], sig(float(x["ATE images median, mm"])), sig(float(x["max, mm"])),
-            sig(float(x["ratio images / noisy median"]), 2), sig(float(x["max"]), 2), x["draws with ratio <= 1.5"], sig(100 * float(x["stereo matches correct, worst draw"])),
-            sig(100 * float(x["tracks correct, worst draw"]))))
+            sig(float(x["ratio images / noisy median"]), 2), sig(float(x["max"]), 2), x["draws with ratio <= 1.5"],
+            sig(100 * float(x["stereo matches correct, worst draw"])), sig(100 * float(x["tracks correct, worst draw"]))))
     return "\n" + "\n".join(lines) + "\n"
 
 
