@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
@@ -530,9 +531,13 @@ TEST(PredictNext, IsTheMotionModelsPredictionChainedToTheWorld) {
 // feeds it: lines 0-19 from the first frame, `lost_per_frame` of them lost per frame (the ids
 // below lost_per_frame * k are gone on frame k), and lines 20-39 only on the frames after the
 // tracker asked (WantsNewFeatures); -1 if none by frame 15. `asked`: frames up to the switch
-// that followed a request; `reference_features`: the first reference's measurable lines.
+// that followed a request; `reference_features`: the first reference's measurable lines;
+// `corrupt`, if set, edits each frame (its index, the frame) before the tracker sees it;
+// `outputs`, if set, receives the tracker's outputs up to the switch.
 int FirstSwitchOfAFrontEndFedTracker(PoseTracker& tracker, const SimulatedSequence& sim, int lost_per_frame,
-                                     int* asked, int* reference_features) {
+                                     int* asked, int* reference_features,
+                                     const std::function<void(int, StereoFrame*)>& corrupt = nullptr,
+                                     std::vector<TrackerOutput>* outputs = nullptr) {
   tracker.Reset(sim.sequence.rig);
   bool new_lines = false;
   *asked = 0;
@@ -547,7 +552,9 @@ int FirstSwitchOfAFrontEndFedTracker(PoseTracker& tracker, const SimulatedSequen
                                  }),
                   side->end());
     }
+    if (corrupt) corrupt(k, &frame);
     const TrackerOutput out = tracker.Track(frame);
+    if (outputs) outputs->push_back(out);
     if (k == 0) *reference_features = out.features_available;
     if (k > 0 && out.status == TrackingStatus::kNewReference) return k;
   }
@@ -592,6 +599,52 @@ TEST(WantsNewFeatures, RefreshSwitchesAsSoonAsTheFrameHoldsMoreLines) {
   auto demanding = CreateTracker("trifocal_line_ekf", {{"filter", {{"refresh_fraction", 0.75}, {"refresh_gain", 4.0}}}});
   EXPECT_EQ(FirstSwitchOfAFrontEndFedTracker(*demanding, sim, 1, &asked, &reference_features), 11);
   EXPECT_EQ(asked, 2);
+}
+
+TEST(NewReference, WaitsForAFrameTheTrackerVouchesFor) {
+  // The front end of RefreshSwitchesAsSoonAsTheFrameHoldsMoreLines without the refresh: frame
+  // 11, 8 of the 18 measurable lines left, becomes the new reference. Here frame 11 measures
+  // each surviving line `shift` px off along its normal, the sign alternating from line to line.
+  // The gate is widened and the recheck off so that such lines enter the update, as on the
+  // paper scene's draw 31 (docs/frontend.md, seventeenth pass); with the defaults the gate keeps
+  // most of them out here. At 9 px the update is degraded (cost under twice its healthy bound)
+  // and still becomes the reference; at 12 px it is grossly inconsistent (cost about ten times
+  // the bound) and at 60 px there is no update (every line outside the gate): taken as the
+  // reference, its error would be frozen into every later pose, so the switch waits for frame
+  // 12, consistent again, which still keeps min_features (6) of the reference (reason: the
+  // fraction, not too few left).
+  SimulationConfig config = SimulationConfigFromJson(nlohmann::json::object(), "test");
+  config.seed = 3;
+  const SimulatedSequence sim = Simulate(config);
+  struct Case {
+    double shift;
+    int first_switch;
+    TrackingStatus status_11;
+  };
+  for (const Case& c : {Case{0.0, 11, TrackingStatus::kNewReference}, Case{9.0, 11, TrackingStatus::kNewReference},
+                        Case{12.0, 12, TrackingStatus::kDegraded}, Case{60.0, 12, TrackingStatus::kLost}}) {
+    SCOPED_TRACE(testing::Message() << "shift " << c.shift << " px");
+    const auto corrupt = [&](int k, StereoFrame* frame) {
+      if (k != 11) return;
+      for (LineObservation& o : frame->left) {
+        if (o.id >= 20) continue;  // the new lines are not measured against the reference
+        const Eigen::Vector2d d = (o.segment.tail<2>() - o.segment.head<2>()).normalized();
+        const Eigen::Vector2d offset = (o.id % 2 == 0 ? c.shift : -c.shift) * Eigen::Vector2d(-d.y(), d.x());
+        o.segment.head<2>() += offset;
+        o.segment.tail<2>() += offset;
+      }
+    };
+    auto tracker =
+        CreateTracker("trifocal_line_ekf", {{"filter", {{"robust_recheck", false}, {"gate_probability", 0.999999999}}}});
+    int asked = 0, reference_features = 0;
+    std::vector<TrackerOutput> outputs;
+    const int first_switch =
+        FirstSwitchOfAFrontEndFedTracker(*tracker, sim, 1, &asked, &reference_features, corrupt, &outputs);
+    ASSERT_EQ(first_switch, c.first_switch);
+    EXPECT_EQ(reference_features, 18);
+    EXPECT_EQ(outputs[11].status, c.status_11);
+    EXPECT_EQ(outputs[first_switch].reason, StatusReason::kFeatureFractionLeft);
+  }
 }
 
 // filter.adaptive_process_noise (stereo_ekf_tracker.cc, AdaptProcessNoise): Q follows the motion

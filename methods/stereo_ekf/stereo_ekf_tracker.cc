@@ -557,6 +557,13 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   wants_new_features_ = too_few || ask_ahead || ask_refresh;
   const int current = model_->CurrentStereoFeatures();
   const bool refresh_now = refresh && current >= options_.refresh_gain * remaining;
+  // A frame without an update, or whose update is grossly inconsistent with its measurements
+  // (the recheck's threshold: cost over kRecheckCostFactor times the healthy bound), would freeze
+  // its error into every later pose if it became the reference: wait for a frame the tracker can
+  // vouch for (the asks above stand) unless fewer than min_features remain. A merely degraded
+  // frame still switches: waiting keeps the tracker on a reference that is running out.
+  const bool gross = state->used < 2 || !(state->cost <= kRecheckCostFactor * HealthyCost(MeasuredRows()));
+  if (gross && !few_left) return;
   if (!(too_few || refresh_now) || current <= remaining) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = state->out.cam_from_world;
