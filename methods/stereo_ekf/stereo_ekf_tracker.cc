@@ -248,7 +248,7 @@ void StereoEkfTracker::Update(FrameState* state) {
 void StereoEkfTracker::RecheckAndCommit(FrameState* state) {
   if (!std::isfinite(state->cost)) return;
   if (options_.robust_recheck && !state->robust_solved &&
-      state->cost > kRecheckCostFactor * HealthyCost(MeasuredRows()) && RobustStart(state, /*recheck=*/true)) {
+      GrosslyInconsistent(state->cost) && RobustStart(state, /*recheck=*/true)) {
     // The consensus replaces the inlier set (and may have re-seeded the filter): solve again.
     // If that solve fails the frame has no update, rather than the inconsistent one.
     state->cost = std::numeric_limits<double>::infinity();
@@ -452,6 +452,10 @@ double StereoEkfTracker::HealthyCost(int rows) {
   return healthy_cost_[rows];
 }
 
+bool StereoEkfTracker::GrosslyInconsistent(double cost) {
+  return cost > kRecheckCostFactor * HealthyCost(MeasuredRows());
+}
+
 void StereoEkfTracker::Assess(FrameState* state) {
   TrackerOutput& out = state->out;
   if (!std::isfinite(state->cost) || state->used < 2) {
@@ -557,14 +561,13 @@ void StereoEkfTracker::NewReferencePair(const StereoFrame& frame, FrameState* st
   wants_new_features_ = too_few || ask_ahead || ask_refresh;
   const int current = model_->CurrentStereoFeatures();
   const bool refresh_now = refresh && current >= options_.refresh_gain * remaining;
-  // A frame without an update, or whose update is grossly inconsistent with its measurements
-  // (the recheck's threshold: cost over kRecheckCostFactor times the healthy bound), would freeze
-  // its error into every later pose if it became the reference: wait for a frame the tracker can
-  // vouch for (the asks above stand) unless fewer than min_features remain. A merely degraded
-  // frame still switches: waiting keeps the tracker on a reference that is running out.
-  const bool gross = state->used < 2 || !(state->cost <= kRecheckCostFactor * HealthyCost(MeasuredRows()));
-  if (gross && !few_left) return;
   if (!(too_few || refresh_now) || current <= remaining) return;
+  // A frame without an update (Assess leaves it used = 0), or whose update is grossly
+  // inconsistent with its measurements, would freeze its error into every later pose if it
+  // became the reference: wait for a frame the tracker can vouch for (the asks above stand)
+  // unless fewer than min_features remain. A merely degraded frame still switches: waiting keeps
+  // the tracker on a reference that is running out.
+  if ((state->used < 2 || GrosslyInconsistent(state->cost)) && !few_left) return;
   // Chain the world pose of the new reference, then restart relative to it (Sec. 3.3).
   ref_from_world_ = state->out.cam_from_world;
   ref_from_world_covariance_ = state->out.covariance;

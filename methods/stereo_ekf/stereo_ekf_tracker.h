@@ -22,7 +22,8 @@
 //      noise (the pose correction against its expected size);
 //   5. new reference pair (Sec. 3.3, the paper's feature replacement): when too few reference
 //      features remain, the current pair becomes the reference and the world pose of the
-//      reference is chained.
+//      reference is chained; a frame without an update or with a grossly inconsistent one
+//      waits, unless fewer than min_features remain (docs/derivations.md).
 // Stages 2 and 4 and the recheck hold the robustness policy beyond the paper (RANSAC start,
 // recheck and re-seeding, health, noise adaptation, widening and velocity decay while lost);
 // the paper preset turns it off as a whole (ApplyPaperPreset), and each part has its own option
@@ -139,6 +140,10 @@ class StereoEkfTracker : public PoseTracker {
   int MeasuredRows() const;
   // The healthy bound on the posterior cost of `rows` residual scalars.
   double HealthyCost(int rows);
+  // This frame's update is grossly inconsistent with its measurements: its posterior cost is
+  // over kRecheckCostFactor times HealthyCost (the recheck re-solves such a frame; it does not
+  // become a new reference). Call only for a frame with an update (a finite cost).
+  bool GrosslyInconsistent(double cost);
 
   StereoEkfOptions options_;
   std::unique_ptr<FeatureModel> model_;
