@@ -140,9 +140,9 @@ void BM_TrackRefitOneImage(benchmark::State& state) {
   FlowSetup setup;
   setup.tracker.Flow(setup.previous, setup.next, setup.segments);
   std::vector<Segment2d> tracked;
-  std::vector<char> ok;
-  for (auto _ : state) setup.tracker.Refit(setup.next[0].cols, setup.next[0].rows, &tracked, &ok);
-  state.counters["kept"] = static_cast<double>(std::count(ok.begin(), ok.end(), 1));
+  std::vector<LineLoss> losses;
+  for (auto _ : state) setup.tracker.Refit(setup.next[0].cols, setup.next[0].rows, &tracked, &losses);
+  state.counters["kept"] = static_cast<double>(std::count(losses.begin(), losses.end(), LineLoss::kKept));
 }
 BENCHMARK(BM_TrackRefitOneImage)->Unit(benchmark::kMillisecond);
 

@@ -322,7 +322,9 @@ LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old,
                            Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace) {
   LineRefit fit;
   const int needed = std::max(3, static_cast<int>(std::ceil(options.min_inlier_fraction * sampled)));
+  fit.loss = LineLoss::kFlowPoints;
   if (static_cast<int>(points.size()) < needed) return fit;
+  fit.loss = LineLoss::kRefit;
   LineEstimator estimator;
   estimator.points = &points;
   estimator.threshold_sq = options.inlier_px * options.inlier_px;
@@ -361,13 +363,33 @@ LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old,
   const Eigen::Vector2d p = base + beta * dir, q = base + (alpha * length + beta) * dir;
   fit.segment = Segment2d(p.x(), p.y(), q.x(), q.y());
   fit.ok = true;
+  fit.loss = LineLoss::kKept;
   return fit;
 }
 
-void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok) {
+const char* LineLossName(LineLoss loss) {
+  switch (loss) {
+    case LineLoss::kKept: return "kept";
+    case LineLoss::kFlowAtBorder: return "flow_at_border";
+    case LineLoss::kFlowPoints: return "flow_points";
+    case LineLoss::kRefit: return "refit";
+    case LineLoss::kSnap: return "snap";
+    case LineLoss::kDirection: return "direction";
+    case LineLoss::kShort: return "short";
+    case LineLoss::kStereo: return "stereo";
+  }
+  return "unknown";
+}
+
+void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<LineLoss>* losses) {
   const int n = static_cast<int>(segments_.size());
   tracked->assign(n, Segment2d::Zero());
-  ok->assign(n, 0);
+  losses->assign(n, LineLoss::kKept);
+  // A segment whose flow points come within the LK window of the border is leaving the view.
+  const double border = options_.window_px;
+  const auto near_border = [&](const cv::Point2f& q) {
+    return q.x < border || q.y < border || q.x > width - 1 - border || q.y > height - 1 - border;
+  };
   double rms_sum = 0.0;
   int kept = 0;
   for (int s = 0; s < n; ++s) {
@@ -383,20 +405,34 @@ void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* track
       positions_.push_back(length * i / (k - 1));
     }
     LineRefit fit = RefitTrackedLine(options_, old, k, data_, positions_, &ransac_, &result_);
-    if (!fit.ok) continue;
+    LineLoss& loss = (*losses)[s];
+    if (!fit.ok) {
+      loss = fit.loss;
+      if (loss == LineLoss::kFlowPoints &&
+          std::any_of(points_.begin() + first_point_[s], points_.begin() + first_point_[s + 1], near_border)) {
+        loss = LineLoss::kFlowAtBorder;
+      }
+      continue;
+    }
     if (options_.snap_radius_px > 0.0) {
       double direction_sigma_deg = 0.0;
-      if (!SnapSegmentToEdges(options_, derivatives_, &fit.segment, &snap_, &direction_sigma_deg) ||
-          DirectionUndetermined(options_, direction_sigma_deg)) {
+      if (!SnapSegmentToEdges(options_, derivatives_, &fit.segment, &snap_, &direction_sigma_deg)) {
+        loss = LineLoss::kSnap;
+        continue;
+      }
+      if (DirectionUndetermined(options_, direction_sigma_deg)) {
+        loss = LineLoss::kDirection;
         continue;
       }
       // The snap only trims; the extent grows back along the edge here (tracked lines only).
       ExtendAlongEdge(options_, derivatives_, &fit.segment);
     }
-    if (!ClipSegmentToImage(width, height, &fit.segment)) continue;
-    if ((fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) continue;
+    if (!ClipSegmentToImage(width, height, &fit.segment) ||
+        (fit.segment.tail<2>() - fit.segment.head<2>()).norm() < options_.min_length_px) {
+      loss = LineLoss::kShort;
+      continue;
+    }
     (*tracked)[s] = fit.segment;
-    (*ok)[s] = 1;
     rms_sum += fit.rms_px;
     ++kept;
   }

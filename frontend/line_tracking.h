@@ -36,6 +36,7 @@
 //          options.extend_max_px per frame): the extent follows the edge both ways.
 #pragma once
 
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -48,9 +49,31 @@ namespace slt {
 
 using ImagePyramid = std::vector<cv::Mat>;
 
-// The refit of one segment (stage 2 above, before clipping): ok = false when it is lost.
+// Why a tracked line was dropped (kKept: it was not). Refit gives the reasons of one image;
+// the stereo front end adds kStereo for a pair that fails its stereo tests, and reports a line
+// lost in either image by that image's reason (FrontEndFrameStats::lost_by, track_images' log
+// and summary), so that where a sequence loses its lines is measured, not guessed.
+enum class LineLoss : std::uint8_t {
+  kKept,
+  kFlowAtBorder,  // too few flow points kept (LK status), on a segment within window_px of the
+                  // image's border: the line is leaving the view
+  kFlowPoints,    // too few flow points kept, elsewhere
+  kRefit,         // too few inliers to the refitted line, their RMS over max_rms_px, or the
+                  // endpoint map's scale alpha outside [0.5, 2]
+  kSnap,          // too few edge points of the line's polarity to snap to
+  kDirection,     // the snapped line's direction undetermined (max_angle_sigma_deg)
+  kShort,         // outside the image, or shorter than min_length_px once clipped to it
+  kStereo,        // (the stereo front end) the pair's overlap along the epipolar lines or its
+                  // disparity out of range
+};
+inline constexpr int kNumLineLosses = 8;
+const char* LineLossName(LineLoss loss);  // "flow_at_border", ...
+
+// The refit of one segment (stage 2 above, before clipping): ok = false when it is lost, for
+// the reason `loss` (kFlowPoints or kRefit).
 struct LineRefit {
   bool ok = false;
+  LineLoss loss = LineLoss::kKept;
   Segment2d segment = Segment2d::Zero();  // the new segment, oriented as the old one
   int inliers = 0;
   double rms_px = 0.0;  // RMS distance of the inliers to the fitted line
@@ -114,9 +137,9 @@ class LineFlowTracker {
   // that is not finite or falls outside the image starts at p.
   void Flow(const ImagePyramid& previous, const ImagePyramid& next, const std::vector<Segment2d>& segments,
             const std::vector<Eigen::Matrix3d>& point_maps, int levels);
-  // Stage 2: the refitted (and snapped) segments (ok[i] = 0 when segment i is lost), for the
-  // segments of the last Flow() call, in an image of the given size.
-  void Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<char>* ok);
+  // Stage 2: the refitted (and snapped) segments (losses[i] = why segment i is lost, kKept when
+  // it is not), for the segments of the last Flow() call, in an image of the given size.
+  void Refit(int width, int height, std::vector<Segment2d>* tracked, std::vector<LineLoss>* losses);
 
   // The mean RMS refit residual of the segments kept by the last Refit, px (diagnostics).
   double last_mean_rms() const { return last_mean_rms_; }

@@ -66,15 +66,21 @@ TEST(RefitTrackedLine, LostWhenTooFewPointsAgree) {
   LinePoints(a, b, 10, Eigen::Vector2d::Zero(), &points, &positions);
   // Half the points scattered: 5 of 10 agree, fewer than 6.
   for (int i = 0; i < 10; i += 2) points[i] += Eigen::Vector2d(0.0, 5.0 + i);
-  EXPECT_FALSE(RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace).ok);
+  LineRefit fit = RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace);
+  EXPECT_FALSE(fit.ok);
+  EXPECT_EQ(fit.loss, LineLoss::kRefit);
   // Points the flow lost count against the segment as well: 5 kept of 10 sampled.
   LinePoints(a, b, 10, Eigen::Vector2d::Zero(), &points, &positions);
   points.resize(5);
   positions.resize(5);
-  EXPECT_FALSE(RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace).ok);
+  fit = RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace);
+  EXPECT_FALSE(fit.ok);
+  EXPECT_EQ(fit.loss, LineLoss::kFlowPoints);
   points.push_back(b);
   positions.push_back((b - a).norm());
-  EXPECT_TRUE(RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace).ok);
+  fit = RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace);
+  EXPECT_TRUE(fit.ok);
+  EXPECT_EQ(fit.loss, LineLoss::kKept);
 }
 
 // A blurred step edge along the line through `p` with direction `d` (brighter on the left
@@ -91,6 +97,19 @@ cv::Mat StepEdgeImage(const Eigen::Vector2d& p, const Eigen::Vector2d& d, double
       image.at<uchar>(v, u) = cv::saturate_cast<uchar>(100.0 + step);
     }
   }
+  return image;
+}
+
+// StepEdgeImage with Gaussian image noise of `sigma` grey levels (OpenCV's RNG, seeded: the same
+// image every run).
+cv::Mat NoisyStepEdgeImage(const Eigen::Vector2d& p, const Eigen::Vector2d& d, double sigma,
+                           double half_length = 1e9) {
+  cv::Mat image = StepEdgeImage(p, d, half_length), noise(image.size(), CV_16SC1);
+  cv::theRNG().state = 7;
+  cv::randn(noise, 0.0, sigma);
+  image.convertTo(image, CV_16SC1);
+  image += noise;
+  image.convertTo(image, CV_8UC1);
   return image;
 }
 
@@ -158,12 +177,7 @@ TEST(SnapSegmentToEdges, LosesAShortSegmentWhoseDirectionTheEdgePointsDoNotDeter
   // The step edge with image noise (20 grey levels, seeded): the edge points scatter, which
   // leaves the direction of a 30-px segment less determined than that of an 80-px one.
   const Eigen::Vector2d p(150.3, 117.6), d = Eigen::Vector2d(1.0, 0.35).normalized();
-  cv::Mat image = StepEdgeImage(p, d), noise(image.size(), CV_16SC1);
-  cv::theRNG().state = 7;
-  cv::randn(noise, 0.0, 20.0);
-  image.convertTo(image, CV_16SC1);
-  image += noise;
-  image.convertTo(image, CV_8UC1);
+  const cv::Mat image = NoisyStepEdgeImage(p, d, 20.0);
   TrackingOptions options;
   LineFlowTracker tracker(options);
   ImagePyramid pyramid;
@@ -228,12 +242,7 @@ TEST(LineFlowTracker, KeepsATrackedSegmentAsLongAsItsEdge) {
   // Image noise (4 grey levels, seeded) gives Lucas-Kanade texture to lock onto (on a noise-free
   // straight edge its points are ill-conditioned and dropped).
   const Eigen::Vector2d p(160.4, 121.7), d = Eigen::Vector2d(1.0, 0.35).normalized();
-  cv::Mat image = StepEdgeImage(p, d, 60.0), noise(image.size(), CV_16SC1);
-  cv::theRNG().state = 7;
-  cv::randn(noise, 0.0, 4.0);
-  image.convertTo(image, CV_16SC1);
-  image += noise;
-  image.convertTo(image, CV_8UC1);
+  const cv::Mat image = NoisyStepEdgeImage(p, d, 4.0, 60.0);
   const auto track = [&](double extend_max_px) {
     TrackingOptions options;
     options.extend_max_px = extend_max_px;
@@ -242,11 +251,11 @@ TEST(LineFlowTracker, KeepsATrackedSegmentAsLongAsItsEdge) {
     tracker.BuildPyramid(image, &pyramid);
     const Eigen::Vector2d a = p - 15.0 * d, b = p + 15.0 * d;
     std::vector<Segment2d> segments = {Segment2d(a.x(), a.y(), b.x(), b.y())};
-    std::vector<char> ok;
+    std::vector<LineLoss> losses;
     for (int frame = 0; frame < 5; ++frame) {
       tracker.Flow(pyramid, pyramid, segments);
-      tracker.Refit(image.cols, image.rows, &segments, &ok);
-      EXPECT_TRUE(ok[0]) << frame;
+      tracker.Refit(image.cols, image.rows, &segments, &losses);
+      EXPECT_EQ(losses[0], LineLoss::kKept) << frame;
     }
     EXPECT_LT(DistanceToLine(segments[0], p, d), 0.1);
     return Eigen::Vector2d(d.dot(segments[0].head<2>() - p), d.dot(segments[0].tail<2>() - p));
@@ -258,6 +267,45 @@ TEST(LineFlowTracker, KeepsATrackedSegmentAsLongAsItsEdge) {
   const Eigen::Vector2d kept = track(0.0);
   EXPECT_GE(kept[0], -15.5);
   EXPECT_LE(kept[1], 15.5);
+}
+
+TEST(LineFlowTracker, SaysWhyItLosesASegment) {
+  // The edge image of KeepsATrackedSegmentAsLongAsItsEdge (with its seeded noise) and a flat
+  // grey one, 320 x 240, tracked onto themselves (zero flow). On the flat image Lucas-Kanade
+  // keeps no point (no gradient to track): flow_points, or flow_at_border for a segment within
+  // the LK window (9 px) of the image's border. On the edge image a 40-px piece of the edge is
+  // kept, a 20-px one is shorter than min_length_px (25), and a segment 12 px beside the edge,
+  // on its flat side, tracks (the noise) but the snap finds only noise there: edge points that
+  // leave its direction undetermined, or, with snap_min_gradient above the noise's, none.
+  const Eigen::Vector2d p(160.4, 121.7), d = Eigen::Vector2d(1.0, 0.35).normalized(), n(-d.y(), d.x());
+  const cv::Mat edge = NoisyStepEdgeImage(p, d, 4.0);
+  const cv::Mat flat(edge.size(), CV_8UC1, cv::Scalar(128));
+  const auto piece = [](const Eigen::Vector2d& c, const Eigen::Vector2d& dir, double length) {
+    const Eigen::Vector2d a = c - 0.5 * length * dir, b = c + 0.5 * length * dir;
+    return Segment2d(a.x(), a.y(), b.x(), b.y());
+  };
+  const auto losses_on = [](const cv::Mat& image, const std::vector<Segment2d>& segments,
+                            const TrackingOptions& options = TrackingOptions()) {
+    LineFlowTracker tracker(options);
+    ImagePyramid pyramid;
+    tracker.BuildPyramid(image, &pyramid);
+    tracker.Flow(pyramid, pyramid, segments);
+    std::vector<Segment2d> tracked;
+    std::vector<LineLoss> losses;
+    tracker.Refit(image.cols, image.rows, &tracked, &losses);
+    return losses;
+  };
+  const std::vector<LineLoss> on_flat =
+      losses_on(flat, {piece(Eigen::Vector2d(160, 120), d, 60.0), piece(Eigen::Vector2d(40, 235), Eigen::Vector2d(1, 0), 60.0)});
+  EXPECT_EQ(on_flat, (std::vector<LineLoss>{LineLoss::kFlowPoints, LineLoss::kFlowAtBorder}));
+  const std::vector<LineLoss> on_edge =
+      losses_on(edge, {piece(p, d, 40.0), piece(p, d, 20.0), piece(p - 12.0 * n, d, 60.0)});
+  EXPECT_EQ(on_edge, (std::vector<LineLoss>{LineLoss::kKept, LineLoss::kShort, LineLoss::kDirection}));
+  TrackingOptions strong_edges_only;
+  strong_edges_only.snap_min_gradient = 20.0;
+  EXPECT_EQ(losses_on(edge, {piece(p, d, 40.0), piece(p - 12.0 * n, d, 60.0)}, strong_edges_only),
+            (std::vector<LineLoss>{LineLoss::kKept, LineLoss::kSnap}));
+  EXPECT_STREQ(LineLossName(LineLoss::kFlowAtBorder), "flow_at_border");
 }
 
 TEST(SnapDetections, MovesDetectionsOntoTheEdgeAndDropsThoseItCannotPlace) {
@@ -308,13 +356,13 @@ TEST(LineFlowTracker, FollowsRenderedRoomEdgesOntoTheirTrueLines) {
     }
     tracker.Flow(previous, next, start);
     std::vector<Segment2d> tracked;
-    std::vector<char> ok;
-    tracker.Refit(room.rig().width, room.rig().height, &tracked, &ok);
+    std::vector<LineLoss> losses;
+    tracker.Refit(room.rig().width, room.rig().height, &tracked, &losses);
     ASSERT_EQ(tracked.size(), start.size());
     const ProjectedGroundTruth truth = room.Projected(3, camera);
     segments += static_cast<int>(start.size());
     for (size_t i = 0; i < start.size(); ++i) {
-      if (!ok[i]) continue;
+      if (losses[i] != LineLoss::kKept) continue;
       ++kept;
       truth.LinesUnder(tracked[i], &under);
       if (std::binary_search(under.begin(), under.end(), static_cast<int>(ids[i]))) ++correct;

@@ -156,18 +156,22 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
   stats_.times.track += Since(t0);
 
   t0 = Clock::now();
-  for (int c = 0; c < 2; ++c) flow_[c].Refit(rig_.width, rig_.height, &tracked_[c], &ok_[c]);
+  for (int c = 0; c < 2; ++c) flow_[c].Refit(rig_.width, rig_.height, &tracked_[c], &losses_[c]);
   int kept = 0;
   for (int i = 0; i < n; ++i) {
     const Segment2d& l = tracked_[0][i];
     const Segment2d& r = tracked_[1][i];
-    const bool consistent =
-        ok_[0][i] && ok_[1][i] &&  // lost in one image: dropped in both
-        geometry.BeamOverlap(l, r, epipolar_sine, options_.matching.epipolar_distance_px,
-                             StereoGeometry::OverlapOf::kShorter, StereoGeometry::AlongEpipolar::kSameExtent) >=
-            options_.tracking.min_stereo_overlap &&
-        geometry.DisparityInRange(l, r, options_.matching.min_disparity_px, options_.matching.max_disparity_px);
-    if (!consistent) {
+    // Lost in one image: dropped in both.
+    LineLoss loss = losses_[0][i] != LineLoss::kKept ? losses_[0][i] : losses_[1][i];
+    if (loss == LineLoss::kKept &&
+        (geometry.BeamOverlap(l, r, epipolar_sine, options_.matching.epipolar_distance_px,
+                              StereoGeometry::OverlapOf::kShorter, StereoGeometry::AlongEpipolar::kSameExtent) <
+             options_.tracking.min_stereo_overlap ||
+         !geometry.DisparityInRange(l, r, options_.matching.min_disparity_px, options_.matching.max_disparity_px))) {
+      loss = LineLoss::kStereo;
+    }
+    if (loss != LineLoss::kKept) {
+      ++stats_.lost_by[static_cast<int>(loss)];
       if (motion.rematch_below_fraction > 0.0) {
         LostLine lost{live_[i], {live_[i].left, live_[i].right}, from_prediction_[i] != 0};
         for (int c = 0; c < 2; ++c) {

@@ -72,7 +72,9 @@ struct FrontEndFrameStats {
   bool detected = false;   // detection and matching ran (last_detections, last_matches) ...
   int detection_lag = 0;   // ... on the pair this many frames before this one (0 or 1)
   int tracked = 0;         // live lines carried over from the previous pair
-  int lost = 0;            // live lines of the previous pair dropped here
+  int lost = 0;            // live lines of the previous pair dropped here, and by reason
+  std::array<int, kNumLineLosses> lost_by{};  // (LineLoss; a line lost in either image counts
+                                              // under that image's reason, the left one's first)
   int detected_left = 0;   // segments after merge, length and contrast filters
   int detected_right = 0;
   int matched = 0;         // stereo matches
@@ -165,7 +167,7 @@ class StereoFrontEnd {
   std::vector<MsldDescriptor> descriptors_[2];
   std::vector<StereoMatch> matches_;
   std::vector<Segment2d> segments_[2], tracked_[2];
-  std::vector<char> ok_[2];
+  std::vector<LineLoss> losses_[2];
   std::vector<Eigen::Matrix3d> maps_[2];
   std::vector<char> from_prediction_;
   std::vector<int> unplaced_;  // lines with neither a camera nor an image seed

@@ -95,6 +95,32 @@ TEST(StereoFrontEnd, DetectionsOnLiveLinesAreNotMatchedAgainAndTheSnapCanBeOff) 
   EXPECT_GE(unsnapped.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true).left.size(), 0.8 * first);
 }
 
+TEST(StereoFrontEnd, CountsTheLostLinesByTheStageThatDroppedThem) {
+  // The room's first pair, then the same left image with a flat grey right one: every line is
+  // lost in the right image, and counted once, under that image's reason (the flow or the snap),
+  // not as a stereo failure. On the same pair again the few lines lost are counted as well.
+  const RenderedRoom room;
+  StereoFrontEnd front_end(FrontEndOptions(), room.rig());
+  const int first = static_cast<int>(front_end.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true).left.size());
+  ASSERT_GE(first, 40);
+  const cv::Mat flat(room.Image(0, 1).size(), CV_8UC1, cv::Scalar(128));
+  front_end.Process(room.Image(0, 0), flat, 1.0, false);
+  const FrontEndFrameStats& stats = front_end.last_stats();
+  EXPECT_EQ(stats.tracked, 0);
+  EXPECT_EQ(stats.lost, first);
+  int counted = 0;
+  for (const int n : stats.lost_by) counted += n;
+  EXPECT_EQ(counted, stats.lost);
+  EXPECT_EQ(stats.lost_by[static_cast<int>(LineLoss::kKept)], 0);
+  EXPECT_EQ(stats.lost_by[static_cast<int>(LineLoss::kStereo)], 0);
+  StereoFrontEnd again(FrontEndOptions(), room.rig());
+  again.Process(room.Image(0, 0), room.Image(0, 1), 0.0, true);
+  again.Process(room.Image(0, 0), room.Image(0, 1), 1.0, false);
+  counted = 0;
+  for (const int n : again.last_stats().lost_by) counted += n;
+  EXPECT_EQ(counted, again.last_stats().lost);
+}
+
 TEST(StereoFrontEnd, NewMatchesAreCheckedAgainstThePreviousPairWithThePredictedMotion) {
   // Paper scene frames 19 and 20, detection on both; the second pair's matches with and
   // without matching.max_previous_px, given the true motion as the prediction.

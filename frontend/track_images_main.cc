@@ -10,6 +10,7 @@
 // camera-to-world), optionally the observations (stereo-lines/1, replayable with `track`), a
 // per-frame log and the pictures of --viz (frontend/frontend_viz.h). All outputs or none.
 #include <CLI/CLI.hpp>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -102,7 +103,11 @@ int main(int argc, char** argv) {
     ImageTracker image_tracker(front_end, *tracker, rig);
     Trajectory trajectory;
     std::ostringstream log;
-    log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms\n";
+    log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms";
+    // The lost lines by reason (LineLoss, line_tracking.h), after the columns above.
+    for (int r = 1; r < kNumLineLosses; ++r) log << ",lost_" << LineLossName(static_cast<LineLoss>(r));
+    log << "\n";
+    std::array<long, kNumLineLosses> lost_by{};
     RunCounts counts;
     ProgressBar progress(progress_forced || StderrIsTerminal());
     int detection_frames = 0;
@@ -134,7 +139,12 @@ int main(int argc, char** argv) {
           << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost << "," << stats.predicted << ","
           << stats.rematched << "," << 1e3 * t.detect << ","
           << 1e3 * t.describe << "," << 1e3 * t.match << "," << 1e3 * t.track << "," << 1e3 * t.filter << ","
-          << 1e3 * step.tracker_seconds << "," << 1e3 * read << "\n";
+          << 1e3 * step.tracker_seconds << "," << 1e3 * read;
+      for (int r = 1; r < kNumLineLosses; ++r) {
+        log << "," << stats.lost_by[r];
+        lost_by[r] += stats.lost_by[r];
+      }
+      log << "\n";
       if (progress.shown()) {
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const int done = k - first + 1;
@@ -163,6 +173,17 @@ int main(int argc, char** argv) {
                  ms(detecting.match, detection_frames), ms(detecting.track, detection_frames),
                  ms(detecting.filter, detection_frames), ms(detecting.Total(), detection_frames),
                  ms(tracker_seconds, frames), ms(read_seconds, frames), frames / std::max(wall, 1e-9));
+    // Where the lines went: the tracks lost, by the stage that dropped them.
+    std::string losses;
+    long lost = 0;
+    for (int r = 1; r < kNumLineLosses; ++r) {
+      lost += lost_by[r];
+      if (lost_by[r] > 0) {
+        losses += StringPrintf("%s%s %ld", losses.empty() ? "" : ", ", LineLossName(static_cast<LineLoss>(r)), lost_by[r]);
+      }
+    }
+    std::fprintf(stderr, "  lines lost: %ld%s%s%s\n", lost, losses.empty() ? "" : " (", losses.c_str(),
+                 losses.empty() ? "" : ")");
     return 0;
   });
 }

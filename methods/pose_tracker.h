@@ -31,7 +31,7 @@ enum class TrackingStatus {
   kLost,           // too few usable features: the pose is a prediction only
   kDegraded,       // measured, but the tracker cannot vouch for the pose: the measurements
                    // disagree with each other or with the prediction beyond their noise, or
-                   // leave a direction of the pose unconstrained (docs/formats.md, status)
+                   // under half of them agree with it (MinorityAgrees; docs/formats.md, status)
 };
 
 inline const char* TrackingStatusName(TrackingStatus status) {
@@ -83,6 +83,12 @@ inline const char* StatusReasonName(StatusReason reason) {
 // some pose by chance, and that pose is no measurement of the camera (issue 21).
 inline constexpr double kMinAgreeingFraction = 0.25;
 inline bool FewAgree(int agreeing, int measurable) { return agreeing < kMinAgreeingFraction * measurable; }
+
+// A frame whose pose fewer than half of its measurable features agree with, not lost by FewAgree,
+// is reported degraded: the pose rests on a minority of what the frame sees, and a handful of
+// lines that happen to fit a drifting pose carry it while the rest fall outside the gate
+// (docs/frontend.md, nineteenth pass).
+inline bool MinorityAgrees(int agreeing, int measurable) { return 2 * agreeing < measurable; }
 
 // An observed segment the trackers measure: finite and at least kMinSegmentLengthPx long (a
 // shorter one fixes neither its line's direction nor the order of its endpoints).

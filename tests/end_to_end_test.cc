@@ -248,6 +248,23 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
   EXPECT_LT(ate_images, 0.015) << "perfect observations: " << ate_perfect;
   EXPECT_LT(ate_perfect, 0.005);
   EXPECT_NE(summary.find(", 0 lost;"), std::string::npos) << summary;
+  // Every lost line has one reason: per frame the log's lost_* columns add up to its lost
+  // column, and over the run to the summary's "lines lost".
+  const CsvTable log = ReadCsvFile(Path("log.csv"));
+  const size_t lost_column = log.Column("lost");
+  std::vector<size_t> reason_columns;
+  for (const char* reason : {"flow_at_border", "flow_points", "refit", "snap", "direction", "short", "stereo"}) {
+    reason_columns.push_back(log.Column(std::string("lost_") + reason));
+  }
+  long lost_lines = 0;
+  for (const std::vector<std::string>& row : log.rows) {
+    int by_reason = 0;
+    for (const size_t c : reason_columns) by_reason += std::stoi(row[c]);
+    EXPECT_EQ(by_reason, std::stoi(row[lost_column])) << row[0];
+    lost_lines += by_reason;
+  }
+  EXPECT_GT(lost_lines, 0);
+  EXPECT_NE(summary.find("lines lost: " + std::to_string(lost_lines) + " ("), std::string::npos) << summary;
   // Fig. 9: over the first 40 frames (the paper's figure spans a short run), the first pair's
   // lines re-projected with the recovered motion stay within 0.5 deg of the tracked ones; the
   // curve goes on while any of them is tracked.

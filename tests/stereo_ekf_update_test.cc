@@ -423,6 +423,37 @@ TEST(Recheck, KeepsAnUpdateThatMostFeaturesDisagreeWith) {
   EXPECT_EQ(LogSE3(rechecked.filter().cam_from_ref()), LogSE3(plain.filter().cam_from_ref()));
 }
 
+TEST(FirstUpdate, DegradedWhenMoreFeaturesAreGatedOutThanUsed) {
+  // Ten measurable features, the first `far` of them 10 units off (far outside any gate), the
+  // rest consistent with one another, so that the update's cost is healthy whatever `far` is.
+  // Seven of ten in the update: tracking. Four: the pose rests on a minority of what the frame
+  // measures, as on the paper scene's draw 68 (docs/frontend.md, nineteenth pass): degraded, or
+  // tracking with report_degraded off. Two: under a quarter agree, lost (few_agree) either way.
+  struct Case {
+    int far;
+    bool report;
+    TrackingStatus status;
+  };
+  for (const Case& c : {Case{3, true, TrackingStatus::kTracking}, Case{6, true, TrackingStatus::kDegraded},
+                        Case{6, false, TrackingStatus::kTracking}, Case{8, true, TrackingStatus::kLost},
+                        Case{8, false, TrackingStatus::kLost}}) {
+    SCOPED_TRACE(testing::Message() << c.far << " far, report_degraded " << c.report);
+    auto model = LinearFeatureModel(10, TrueDelta(), 21);
+    for (int i = 0; i < c.far; ++i) model->feature(i).offset += Eigen::Vector4d::Constant(10.0);
+    StereoEkfOptions options = RecheckOptions(false);
+    options.report_degraded = c.report;
+    StereoEkfTracker tracker(options, std::move(model), nlohmann::json::object());
+    const TrackerOutput out = TrackFirstUpdate(&tracker);
+    EXPECT_EQ(out.features_used, 10 - c.far);
+    EXPECT_EQ(out.features_outside_gate, c.far);
+    EXPECT_EQ(out.status, c.status);
+    EXPECT_EQ(tracker.counters().degraded_frames, c.status == TrackingStatus::kDegraded ? 1 : 0);
+    if (c.status == TrackingStatus::kLost) {
+      EXPECT_EQ(out.reason, StatusReason::kFewAgree);
+    }
+  }
+}
+
 TEST(FirstUpdate, LostWhenAPoseDirectionIsNotMeasured) {
   // Features with a zero Jacobian measure nothing about the pose (H = 0): the update runs, its
   // cost is healthy, but the pose is the prior's alone, and the tracker says lost whatever

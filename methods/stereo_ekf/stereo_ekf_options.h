@@ -113,8 +113,9 @@ struct StereoEkfOptions {
 
   // Status kDegraded (methods/pose_tracker.h) for a frame whose update the tracker cannot vouch
   // for: the posterior cost above its chi-square bound (the measurements disagree with each other
-  // or with the prediction), or this frame's measurements leaving a direction of the pose
-  // unconstrained (H not positive definite). The next frame that passes both is kTracking again.
+  // or with the prediction), or fewer than half of the measurable features inside the gate
+  // (pose_tracker.h MinorityAgrees). The next frame that passes both is kTracking again. A frame
+  // whose measurements leave a direction of the pose unconstrained is lost whatever this says.
   bool report_degraded = true;
 
   double GateThreshold(int dimension = 4) const;  // the g in use for a feature of `dimension` rows

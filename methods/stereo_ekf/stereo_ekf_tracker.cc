@@ -494,8 +494,9 @@ void StereoEkfTracker::Assess(FrameState* state) {
       ++counters_.lost_frames;
       out.status = TrackingStatus::kLost;
       out.reason = StatusReason::kFewAgree;
-    } else if (options_.report_degraded && !healthy_) {
-      // Measured, but the posterior cost is implausible for its degrees of freedom.
+    } else if (options_.report_degraded && (!healthy_ || MinorityAgrees(state->used, state->valid))) {
+      // Measured, but the posterior cost is implausible for its degrees of freedom, or more of
+      // the measurable features fall outside the gate than inside it.
       ++counters_.degraded_frames;
       out.status = TrackingStatus::kDegraded;
     }

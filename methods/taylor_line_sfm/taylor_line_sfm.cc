@@ -65,7 +65,7 @@ TrackerOutput TaylorLineSfmTracker::Track(const StereoFrame& frame) {
       out.status = TrackingStatus::kLost;
       out.reason = StatusReason::kFewAgree;
       ++counters_.lost_frames;
-    } else if (2 * agreeing < out.features_available) {
+    } else if (MinorityAgrees(agreeing, out.features_available)) {
       out.status = TrackingStatus::kDegraded;
       ++counters_.degraded_frames;
     }
