@@ -322,7 +322,6 @@ LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old,
                            Ransac<Eigen::Vector3d>* ransac, RansacResult<Eigen::Vector3d>* workspace) {
   LineRefit fit;
   const int needed = std::max(3, static_cast<int>(std::ceil(options.min_inlier_fraction * sampled)));
-  fit.loss = LineLoss::kFlowPoints;
   if (static_cast<int>(points.size()) < needed) return fit;
   fit.loss = LineLoss::kRefit;
   LineEstimator estimator;
@@ -362,7 +361,6 @@ LineRefit RefitTrackedLine(const TrackingOptions& options, const Segment2d& old,
   if (!(alpha > 0.5 && alpha < 2.0)) return fit;
   const Eigen::Vector2d p = base + beta * dir, q = base + (alpha * length + beta) * dir;
   fit.segment = Segment2d(p.x(), p.y(), q.x(), q.y());
-  fit.ok = true;
   fit.loss = LineLoss::kKept;
   return fit;
 }
@@ -406,7 +404,7 @@ void LineFlowTracker::Refit(int width, int height, std::vector<Segment2d>* track
     }
     LineRefit fit = RefitTrackedLine(options_, old, k, data_, positions_, &ransac_, &result_);
     LineLoss& loss = (*losses)[s];
-    if (!fit.ok) {
+    if (!fit.ok()) {
       loss = fit.loss;
       if (loss == LineLoss::kFlowPoints &&
           std::any_of(points_.begin() + first_point_[s], points_.begin() + first_point_[s + 1], near_border)) {

@@ -69,11 +69,11 @@ enum class LineLoss : std::uint8_t {
 inline constexpr int kNumLineLosses = 8;
 const char* LineLossName(LineLoss loss);  // "flow_at_border", ...
 
-// The refit of one segment (stage 2 above, before clipping): ok = false when it is lost, for
-// the reason `loss` (kFlowPoints or kRefit).
+// The refit of one segment (stage 2 above, before clipping): lost for the reason `loss`
+// (kFlowPoints, the default: nothing fitted yet; or kRefit), kept when kKept.
 struct LineRefit {
-  bool ok = false;
-  LineLoss loss = LineLoss::kKept;
+  LineLoss loss = LineLoss::kFlowPoints;
+  bool ok() const { return loss == LineLoss::kKept; }
   Segment2d segment = Segment2d::Zero();  // the new segment, oriented as the old one
   int inliers = 0;
   double rms_px = 0.0;  // RMS distance of the inliers to the fitted line

@@ -42,7 +42,7 @@ TEST(RefitTrackedLine, DropsOutlyingPointsAndMovesTheEndpoints) {
   points[7] += Eigen::Vector2d(4.0, -8.0);
   points[8] += Eigen::Vector2d(3.0, -6.0);
   const LineRefit fit = RefitTrackedLine(options, old, 12, points, positions, &ransac, &workspace);
-  ASSERT_TRUE(fit.ok);
+  ASSERT_TRUE(fit.ok());
   EXPECT_EQ(fit.inliers, 9);
   EXPECT_LT(fit.rms_px, 1e-9);
   const Eigen::Vector2d d = (b - a).normalized();
@@ -67,19 +67,19 @@ TEST(RefitTrackedLine, LostWhenTooFewPointsAgree) {
   // Half the points scattered: 5 of 10 agree, fewer than 6.
   for (int i = 0; i < 10; i += 2) points[i] += Eigen::Vector2d(0.0, 5.0 + i);
   LineRefit fit = RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace);
-  EXPECT_FALSE(fit.ok);
+  EXPECT_FALSE(fit.ok());
   EXPECT_EQ(fit.loss, LineLoss::kRefit);
   // Points the flow lost count against the segment as well: 5 kept of 10 sampled.
   LinePoints(a, b, 10, Eigen::Vector2d::Zero(), &points, &positions);
   points.resize(5);
   positions.resize(5);
   fit = RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace);
-  EXPECT_FALSE(fit.ok);
+  EXPECT_FALSE(fit.ok());
   EXPECT_EQ(fit.loss, LineLoss::kFlowPoints);
   points.push_back(b);
   positions.push_back((b - a).norm());
   fit = RefitTrackedLine(options, old, 10, points, positions, &ransac, &workspace);
-  EXPECT_TRUE(fit.ok);
+  EXPECT_TRUE(fit.ok());
   EXPECT_EQ(fit.loss, LineLoss::kKept);
 }
 
