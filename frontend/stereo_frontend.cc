@@ -63,7 +63,7 @@ const StereoFrame& StereoFrontEnd::Process(const cv::Mat& left, const cv::Mat& r
     AddNewLines();
   }
   if (started_) Track(predicted_motion);
-  const int before = static_cast<int>(stats_.tracked + stats_.lost);
+  const int before = static_cast<int>(stats_.tracked + stats_.lost());
   stats_.rematch = started_ && before > 0 && stats_.tracked < options_.motion.rematch_below_fraction * before;
   const bool detect_here = (detect_new_lines && !lagged) || !started_;
   if (detect_here || stats_.rematch) {
@@ -192,7 +192,6 @@ void StereoFrontEnd::Track(const std::optional<Rigid3d>& predicted_motion) {
     ++kept;
   }
   stats_.tracked = kept;
-  stats_.lost = n - kept;
   live_.resize(kept);
   stats_.times.filter += Since(t0);
 }

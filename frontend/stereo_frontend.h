@@ -39,6 +39,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <numeric>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
@@ -72,9 +73,10 @@ struct FrontEndFrameStats {
   bool detected = false;   // detection and matching ran (last_detections, last_matches) ...
   int detection_lag = 0;   // ... on the pair this many frames before this one (0 or 1)
   int tracked = 0;         // live lines carried over from the previous pair
-  int lost = 0;            // live lines of the previous pair dropped here, and by reason
-  std::array<int, kNumLineLosses> lost_by{};  // (LineLoss; a line lost in either image counts
-                                              // under that image's reason, the left one's first)
+  // Live lines of the previous pair dropped here, by reason (LineLoss; a line lost in either
+  // image counts under that image's reason, the left one's first).
+  std::array<int, kNumLineLosses> lost_by{};
+  int lost() const { return std::accumulate(lost_by.begin(), lost_by.end(), 0); }
   int detected_left = 0;   // segments after merge, length and contrast filters
   int detected_right = 0;
   int matched = 0;         // stereo matches

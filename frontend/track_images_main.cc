@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
       if (pictures) pictures->AddFrame(k - first, images.left, images.right, front_end, *step.frame, step.output);
       const FrontEndStageTimes& t = stats.times;
       log << k << "," << images.time << "," << TrackingStatusName(step.output.status) << "," << stats.live << ","
-          << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost << "," << stats.predicted << ","
+          << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost() << "," << stats.predicted << ","
           << stats.rematched << "," << 1e3 * t.detect << ","
           << 1e3 * t.describe << "," << 1e3 * t.match << "," << 1e3 * t.track << "," << 1e3 * t.filter << ","
           << 1e3 * step.tracker_seconds << "," << 1e3 * read;

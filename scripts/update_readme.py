@@ -254,7 +254,7 @@ def detector_recall(r):
     return "%s and %s" % (", ".join(found[:-1]), found[-1])
 
 
-# The rows of the ten-draw table (measure_frontend --draws): (folder under results/, scene, label).
+# The rows of the draws table (measure_frontend --draws): (folder under results/, scene, label).
 FRONTEND_DRAWS = (("frontend", "room 752x480 (loop)", "room loop, 752 × 480"),
                   ("frontend", "corridor 640x480 (forward)", "corridor walk, 640 × 480"),
                   ("frontend", "paper scene 640x480 (paper motion)", "paper scene"),
@@ -264,7 +264,8 @@ FRONTEND_DRAWS = (("frontend", "room 752x480 (loop)", "room loop, 752 × 480"),
 
 
 def frontend_draws_table(r):
-    """trifocal_line_ekf from rendered images over ten draws of each scene (results/frontend/draws.md)."""
+    """trifocal_line_ekf from rendered images: ten draws of each scene (results/frontend/draws.md), a hundred
+    of the paper scene with its options (results/frontend/paper_scene_tracker/draws.md)."""
     lines = ["| scene, options | draws | ATE from the images, median / max | images / the same tracker on "
              "the truth with the front end's noise (paper scene: the synthetic protocol), median / max | draws within 1.5× "
              "| stereo matches correct, worst draw | tracks correct, worst draw |",
