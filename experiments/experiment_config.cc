@@ -285,6 +285,23 @@ const OptionSchema<ExperimentConfig>& ExperimentSchema() {
           .Array("plots", &C::plots, PlotSchema(), "PNGs drawn (default: follow the sweep and the flags)")
           .Array("expect_better", &C::expect_better, OrderingSchema(), "expected orderings, as pairs")
           .Array("expect_bounds", &C::expect_bounds, BoundSchema(), "expected bounds on a method's mean metrics")
+          .Custom(
+              "reference_metrics",
+              [](JsonReader& r, C* c) { ReadMetricNames(r, "reference_metrics", &c->reference_metrics); },
+              [](const C& c) { return nlohmann::json(c.reference_metrics); }, "metric names",
+              "the metrics experiments_regression_test compares with the committed reference",
+              [](const C& c) -> std::string {
+                if (c.reference_metrics.empty()) return "at least one metric";
+                for (const std::string& m : c.reference_metrics) {
+                  if (std::find(kReferenceMetricNames.begin(), kReferenceMetricNames.end(), m) ==
+                      kReferenceMetricNames.end()) {
+                    std::string known;
+                    for (const std::string& k : kReferenceMetricNames) known += " " + k;
+                    return "'" + m + "' is not compared with references (known:" + known + ")";
+                  }
+                }
+                return "";
+              })
           .Check("name",
                  [](const C& c) {
                    return c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos || c.name[0] == '.'

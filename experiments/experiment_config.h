@@ -103,6 +103,12 @@ struct DatasetSpec {
   nlohmann::json tracker_options = nlohmann::json::object();
 };
 
+// The metrics a CI config can compare with its reference (reference_metrics): the mean rotation
+// and translation error at the metrics frame, the ATE in rotation and translation, the largest
+// translation error.
+inline const std::vector<std::string> kReferenceMetricNames = {"rot_err_deg", "trans_err_m", "ate_rot_deg",
+                                                               "ate_trans_m", "max_trans_err_m"};
+
 struct ExperimentConfig {
   std::string name = "experiment";
   std::string title;
@@ -121,6 +127,12 @@ struct ExperimentConfig {
   std::vector<PlotSpec> plots;
   std::vector<OrderingCheck> expect_better;
   std::vector<BoundCheck> expect_bounds;
+  // The summary metrics experiments_regression_test compares with the committed reference
+  // (experiments/regression_test_support.h): a subset of kReferenceMetricNames, all by default.
+  // A long run whose final and largest errors turn on the last bits of a library's arithmetic
+  // (docs/experiments.md, "CI regression") is compared on its ATE only; its expect_bounds hold it
+  // to the bounds on the rest.
+  std::vector<std::string> reference_metrics = kReferenceMetricNames;
   // Recorded sequences instead of the simulation: then "simulation" and "sweep" must be absent,
   // trials is 1 (a recorded sequence has no random draws), and the sweep is one axis
   // "dataset" whose values are the datasets' labels, so that tables and plots group by dataset.

@@ -119,6 +119,13 @@ TEST(ExperimentConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(ErrorOf({{"expect_bounds", {{{"method", "yu_point_ekf"}, {"metric", "nees"}, {"min", 4}, {"max", 3}}}}})
                 .find("key 'expect_bounds[0].max': below min"),
             std::string::npos);
+  EXPECT_NE(ErrorOf({{"reference_metrics", {"ate_trans_m", "nees"}}})
+                .find("key 'reference_metrics': 'nees' is not compared with references"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"reference_metrics", {"ate"}}}).find("key 'reference_metrics[0]': unknown metric 'ate'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"reference_metrics", json::array()}}).find("key 'reference_metrics': at least one metric"),
+            std::string::npos);
   EXPECT_NE(ErrorOf({{"name", "a/b"}}).find("key 'name'"), std::string::npos);
 }
 

@@ -190,6 +190,19 @@ TEST(Regression, ToleranceNewMethodsAndUnregisteredReferenceMethods) {
     EXPECT_NE(along.failures[0].find(std::string(": ") + TrialMetricName(metric) + "_mean"), std::string::npos)
         << along.failures[0];
   }
+  // A config comparing only its ATE (reference_metrics: a long run whose final and largest
+  // errors turn on the last bits of the arithmetic) lets those errors move, but not the ATE.
+  ExperimentConfig ate_only = c;
+  ate_only.reference_metrics = {"ate_rot_deg", "ate_trans_m"};
+  for (const int metric : {kRotErrDeg, kTransErrM, kMaxTransErrM, kAteRotDeg, kAteTransM}) {
+    std::vector<SummaryRow> r = rows;
+    r[1].metrics[metric].mean *= 5.0;
+    const RegressionReport report = CompareWithReference(ate_only, r, same, reference_config);
+    const bool compared = metric == kAteRotDeg || metric == kAteTransM;
+    EXPECT_EQ(report.ok(), !compared) << TrialMetricName(metric);
+    EXPECT_EQ(report.table.find(std::string(TrialMetricName(metric)) + "_mean") != std::string::npos, compared)
+        << TrialMetricName(metric);
+  }
   // Near zero, the absolute floors apply (0.5 mm, 0.02 deg): against a reference of 0.2 mm and
   // 0.01 deg, +0.4 mm and +0.015 deg pass although 1.25x the reference would not; +0.6 mm and
   // +0.025 deg fail.

@@ -64,11 +64,6 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
     by_key[{reference.rows[r][method_column], reference.rows[r][reference.Column("point")]}] = r;
   }
 
-  const struct {
-    int metric;
-    double floor;
-  } checked[] = {{kRotErrDeg, kRotFloorDeg},  {kTransErrM, kTransFloorM},    {kAteRotDeg, kRotFloorDeg},
-                 {kAteTransM, kTransFloorM}, {kMaxTransErrM, kTransFloorM}};
   std::set<std::string> no_reference;
   for (const SummaryRow& row : rows) {
     const std::string& id = config.methods.at(row.method).Id();
@@ -88,18 +83,21 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
       report.failures.push_back(at + ": " + std::to_string(row.finite_trials) + " trials with finite poses, reference " +
                                 ReportNumber(ref_finite));
     }
-    for (const auto& c : checked) {
-      const std::string column = std::string(TrialMetricName(c.metric)) + "_mean";
+    for (const std::string& name : config.reference_metrics) {
+      const int metric = TrialMetricFromName(name);
+      // The floor by unit: every comparable metric is in degrees or metres.
+      const double absolute_floor = name.size() > 4 && name.compare(name.size() - 4, 4, "_deg") == 0 ? kRotFloorDeg : kTransFloorM;
+      const std::string column = name + "_mean";
       const double reference_value = ParseDouble(ref[reference.Column(column)]);
-      const double current = row.metrics[c.metric].mean;
-      const double limit = std::max(kRelative * reference_value, reference_value + c.floor);
+      const double current = row.metrics[metric].mean;
+      const double limit = std::max(kRelative * reference_value, reference_value + absolute_floor);
       const std::string values = column + " = " + ReportNumber(current);
       Record(std::isfinite(current) && (!std::isfinite(reference_value) || current <= limit),
              at + "  " + values + "  (reference " + ReportNumber(reference_value) + ", limit " +
                  ReportNumber(limit) + ")",
              at + ": " + values + " exceeds the limit " + ReportNumber(limit) + " (reference " +
                  ReportNumber(reference_value) + "; limit = max(" + ReportNumber(kRelative) +
-                 " x reference, reference + " + ReportNumber(c.floor) + "))",
+                 " x reference, reference + " + ReportNumber(absolute_floor) + "))",
              &report);
     }
   }

@@ -2,10 +2,11 @@
 // its unit tests; no program calls it): a fresh summary against a committed reference
 // (results/reference/<name>/, written by scripts/update_references.sh).
 //
-// Tolerance, per method present in both and per sweep point, for the mean rotation and the mean
-// translation error at the metrics frame, and for the error along the whole run (the mean ATE in
-// rotation and translation, the mean largest translation error: a loop's final error can be small
-// while its middle is far off, docs/long_sequences.md):
+// Tolerance, per method present in both and per sweep point, for each metric of the config's
+// reference_metrics (by default all of kReferenceMetricNames: the mean rotation and the mean
+// translation error at the metrics frame, and the error along the whole run, the mean ATE in
+// rotation and translation and the mean largest translation error: a loop's final error can be
+// small while its middle is far off, docs/long_sequences.md):
 //     current <= max(kRelative * reference, reference + floor)
 // with kRelative = 1.25 and floors 0.02 deg and 0.5 mm (so that a reference near zero does not
 // fail on a change far below the noise). The number of trials with finite poses must not drop.
