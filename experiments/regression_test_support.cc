@@ -15,6 +15,12 @@ constexpr double kRelative = 1.25;
 constexpr double kRotFloorDeg = 0.02;
 constexpr double kTransFloorM = 0.0005;
 
+// The absolute floor of a metric of kReferenceMetricNames: the rotations' in degrees, the others'
+// (translations) in metres.
+double ToleranceFloor(int metric) {
+  return metric == kRotErrDeg || metric == kAteRotDeg ? kRotFloorDeg : kTransFloorM;
+}
+
 }  // namespace
 
 RegressionReport CompareWithReference(const ExperimentConfig& config, const std::vector<SummaryRow>& rows,
@@ -85,8 +91,7 @@ RegressionReport CompareWithReference(const ExperimentConfig& config, const std:
     }
     for (const std::string& name : config.reference_metrics) {
       const int metric = TrialMetricFromName(name);
-      // The floor by unit: every comparable metric is in degrees or metres.
-      const double absolute_floor = name.size() > 4 && name.compare(name.size() - 4, 4, "_deg") == 0 ? kRotFloorDeg : kTransFloorM;
+      const double absolute_floor = ToleranceFloor(metric);
       const std::string column = name + "_mean";
       const double reference_value = ParseDouble(ref[reference.Column(column)]);
       const double current = row.metrics[metric].mean;
