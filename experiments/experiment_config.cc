@@ -154,12 +154,20 @@ const OptionSchema<PlotSpec>& PlotSchema() {
   return schema;
 }
 
+// " name name ...": the names of `metrics`, for error messages.
+template <typename Metrics>
+std::string KnownMetrics(const Metrics& metrics) {
+  std::string known;
+  for (const int m : metrics) known += std::string(" ") + TrialMetricName(m);
+  return known;
+}
+
 // "" for a trial metric's name, else "unknown metric '<name>' (known: ...)".
 std::string MetricNameError(const std::string& metric) {
   if (TrialMetricFromName(metric) >= 0) return "";
-  std::string known;
-  for (int m = 0; m < kNumTrialMetrics; ++m) known += std::string(" ") + TrialMetricName(m);
-  return "unknown metric '" + metric + "' (known:" + known + ")";
+  std::array<int, kNumTrialMetrics> all;
+  for (int m = 0; m < kNumTrialMetrics; ++m) all[m] = m;
+  return "unknown metric '" + metric + "' (known:" + KnownMetrics(all) + ")";
 }
 
 // Trial metric names at `key` ("time_us": time_mean_us); an unknown one fails with the list.
@@ -293,11 +301,9 @@ const OptionSchema<ExperimentConfig>& ExperimentSchema() {
               [](const C& c) -> std::string {
                 if (c.reference_metrics.empty()) return "at least one metric";
                 for (const std::string& m : c.reference_metrics) {
-                  if (std::find(kReferenceMetricNames.begin(), kReferenceMetricNames.end(), m) ==
-                      kReferenceMetricNames.end()) {
-                    std::string known;
-                    for (const std::string& k : kReferenceMetricNames) known += " " + k;
-                    return "'" + m + "' is not compared with references (known:" + known + ")";
+                  if (std::find(kReferenceMetrics.begin(), kReferenceMetrics.end(), TrialMetricFromName(m)) ==
+                      kReferenceMetrics.end()) {
+                    return "'" + m + "' is not compared with references (known:" + KnownMetrics(kReferenceMetrics) + ")";
                   }
                 }
                 return "";
@@ -410,6 +416,12 @@ void UseDatasetsAsSweep(JsonReader& reader, ExperimentConfig* c) {
 }
 
 }  // namespace
+
+std::vector<std::string> ReferenceMetricNames() {
+  std::vector<std::string> names;
+  for (const TrialMetric m : kReferenceMetrics) names.emplace_back(TrialMetricName(m));
+  return names;
+}
 
 ExperimentConfig ExperimentConfigFromJson(const nlohmann::json& j, const std::string& where) {
   JsonReader reader(j, where);

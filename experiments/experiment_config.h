@@ -7,6 +7,7 @@
 // Errors are ConfigError "<file>: key '<dotted.key>': <reason>".
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments/trial_result.h"
 #include "frontend/image_sequence.h"
 #include "simulator/simulation_config.h"
 
@@ -106,8 +108,10 @@ struct DatasetSpec {
 // The metrics a CI config can compare with its reference (reference_metrics): the mean rotation
 // and translation error at the metrics frame, the ATE in rotation and translation, the largest
 // translation error.
-inline const std::vector<std::string> kReferenceMetricNames = {"rot_err_deg", "trans_err_m", "ate_rot_deg",
-                                                               "ate_trans_m", "max_trans_err_m"};
+inline constexpr std::array<TrialMetric, 5> kReferenceMetrics = {kRotErrDeg, kTransErrM, kAteRotDeg, kAteTransM,
+                                                                 kMaxTransErrM};
+// Their names (trial_result.h), in that order.
+std::vector<std::string> ReferenceMetricNames();
 
 struct ExperimentConfig {
   std::string name = "experiment";
@@ -128,11 +132,11 @@ struct ExperimentConfig {
   std::vector<OrderingCheck> expect_better;
   std::vector<BoundCheck> expect_bounds;
   // The summary metrics experiments_regression_test compares with the committed reference
-  // (experiments/regression_test_support.h): a subset of kReferenceMetricNames, all by default.
+  // (experiments/regression_test_support.h): a subset of kReferenceMetrics, all by default.
   // A long run whose final and largest errors turn on the last bits of a library's arithmetic
   // (docs/experiments.md, "CI regression") is compared on its ATE only; its expect_bounds hold it
   // to the bounds on the rest.
-  std::vector<std::string> reference_metrics = kReferenceMetricNames;
+  std::vector<std::string> reference_metrics = ReferenceMetricNames();
   // Recorded sequences instead of the simulation: then "simulation" and "sweep" must be absent,
   // trials is 1 (a recorded sequence has no random draws), and the sweep is one axis
   // "dataset" whose values are the datasets' labels, so that tables and plots group by dataset.

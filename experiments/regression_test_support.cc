@@ -15,7 +15,7 @@ constexpr double kRelative = 1.25;
 constexpr double kRotFloorDeg = 0.02;
 constexpr double kTransFloorM = 0.0005;
 
-// The absolute floor of a metric of kReferenceMetricNames: the rotations' in degrees, the others'
+// The absolute floor of a metric of kReferenceMetrics: the rotations' in degrees, the others'
 // (translations) in metres.
 double ToleranceFloor(int metric) {
   return metric == kRotErrDeg || metric == kAteRotDeg ? kRotFloorDeg : kTransFloorM;

@@ -3,7 +3,7 @@
 // (results/reference/<name>/, written by scripts/update_references.sh).
 //
 // Tolerance, per method present in both and per sweep point, for each metric of the config's
-// reference_metrics (by default all of kReferenceMetricNames: the mean rotation and the mean
+// reference_metrics (by default all of kReferenceMetrics: the mean rotation and the mean
 // translation error at the metrics frame, and the error along the whole run, the mean ATE in
 // rotation and translation and the mean largest translation error: a loop's final error can be
 // small while its middle is far off, docs/long_sequences.md):
