@@ -371,6 +371,19 @@ TEST_F(EndToEnd, MeasureFrontendOverSeveralDraws) {
   }
 }
 
+// The tracker configs shipped beside the front end are valid for trifocal_line_ekf and set what
+// docs/frontend.md says they set.
+TEST_F(EndToEnd, ShippedTrackerConfigsAreValid) {
+  for (const auto& [file, expected] :
+       {std::pair{std::string("paper_scene.json"), std::string(R"("keyframe_interval": 3)")},
+        {std::string("endpoint_placement.json"), std::string(R"("endpoint_placement_sigma_px": 6.0)")}}) {
+    const Result r = RunCommand(Bin("track") + " --method trifocal_line_ekf --print-config --tracker-config " +
+                                std::string(SLT_SOURCE_DIR) + "/frontend/tracker_configs/" + file);
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << file << ": " << r.output;
+  }
+}
+
 void ExpectOneErrorLine(const std::string& output, const std::string& program = "track") {
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   EXPECT_EQ(output.rfind(program + ": error: ", 0), 0u) << output;

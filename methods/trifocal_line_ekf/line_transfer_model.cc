@@ -6,10 +6,17 @@
 
 #include "dataset/association.h"
 #include "geometry/trifocal.h"
+#include "optim/line_sfm_manifolds.h"
 #include "methods/pose_tracker.h"
 
 namespace slt {
 namespace {
+
+// Endpoint pairing of a line placed by its endpoints: below this difference (px) between the
+// epipolar distances of the two pairings, the segments' directions decide (geometry/stereo_point.h).
+constexpr double kEndpointPairingAmbiguityPx = 1.0;
+// Endpoints placed nearer than this to the reference camera leave the line unmeasured (m).
+constexpr double kMinPlacedDepthM = 0.05;
 
 // The floor of a propagated R on the theta rows of the (theta, lambda) residual (rad).
 constexpr double kCovarianceFloorRad = 1e-4;
@@ -43,6 +50,8 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
           .Flat(&O::epipolar, EpipolarLineOptionsSchema())
           .Field("min_epipolar_extent_px", &O::min_epipolar_extent_px, AtLeast(0.0),
                  "lines spanning fewer pixels across the epipolar lines are not measured (0 = off)")
+          .Field("endpoint_placement_sigma_px", &O::endpoint_placement_sigma_px, AtLeast(0.0),
+                 "lines in an epipolar plane placed by their endpoints, sigma along the segment (px; 0 = off)")
           .Field("min_plane_angle_deg", &O::min_plane_angle_deg, InRange(0.0, 90.0, "[)"),
                  "current_to_reference: transfers through planes this close are not measured (Sec. 4)")
           .Child("refinement", &O::refinement, ReferenceRefinementOptionsSchema(),
@@ -52,6 +61,12 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
           .Check("consider_structure", [](const O& o) {
             return o.consider_structure && (o.direction != TransferDirection::kReferenceToCurrent ||
                                             o.noise != MeasurementNoise::kPropagated)
+                       ? std::string("needs direction reference_to_current and noise propagated")
+                       : std::string();
+          })
+          .Check("endpoint_placement_sigma_px", [](const O& o) {
+            return o.endpoint_placement_sigma_px > 0.0 && (o.direction != TransferDirection::kReferenceToCurrent ||
+                                                           o.noise != MeasurementNoise::kPropagated)
                        ? std::string("needs direction reference_to_current and noise propagated")
                        : std::string();
           })
@@ -109,6 +124,7 @@ const Rigid3d& LineTransferModel::RightFromRef(const Rigid3d& cam_from_ref) cons
 
 void LineTransferModel::Reset(const StereoRig& rig) {
   rig_ = rig;
+  point_geometry_ = StereoPointGeometry(rig);
   right_adjoint_ = Adjoint(rig.right_from_left);
   left_epipole_ = rig.right_from_left.Center();
   cached_cam_from_ref_ = Rigid3d();
@@ -184,6 +200,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
   }
   CollectStereoLines(frame, &reference_);
   reference_lines_.resize(reference_.size());
+  int placed = 0;
   for (size_t i = 0; i < reference_.size(); ++i) {
     const StereoLine& ref = reference_[i];
     ReferenceLine& out = reference_lines_[i];
@@ -193,6 +210,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     out.line_d_right_segment = d_right * ref.right.line_d_segment;
     out.refined = false;
     ++out.version;
+    if (options_.endpoint_placement_sigma_px > 0.0 && ref.degenerate) placed += PlaceByEndpoints(static_cast<int>(i));
   }
   if (refiner_) {
     refiner_->StartReference(static_cast<int>(reference_.size()));
@@ -221,7 +239,9 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     }
   }
   matches_.clear();
-  return CountUsable(reference_);
+  // The lines placed by their endpoints count with the rest: the tracker's reference policy
+  // weighs the features it can measure.
+  return CountUsable(reference_) + placed;
 }
 
 int LineTransferModel::SetCurrent(const StereoFrame& frame) {
@@ -455,6 +475,57 @@ bool LineTransferModel::EvaluateStructureJacobian(int index, const Rigid3d& cam_
     jacobian->leftCols<4>().noalias() = options_.endpoint_sigma_px * d_line * line.line_d_left_segment;
     jacobian->rightCols<4>().noalias() = options_.endpoint_sigma_px * d_line * line.line_d_right_segment;
   }
+  return true;
+}
+
+bool LineTransferModel::PlaceByEndpoints(int index) {
+  const StereoLine& ref = reference_[index];
+  Segment2d right = ref.right.segment;
+  if (StereoEndpointsSwapped(point_geometry_, ref.left.segment, right, kEndpointPairingAmbiguityPx)) {
+    right << right.tail<2>(), right.head<2>();
+  }
+  ReferencePoint p, q;
+  point_geometry_.Point(ref.left.segment.head<2>(), right.head<2>(), true, &p);
+  point_geometry_.Point(ref.left.segment.tail<2>(), right.tail<2>(), true, &q);
+  const Eigen::Vector3d pq = q.point - p.point;
+  const double length = pq.norm();
+  if (!(p.depth > kMinPlacedDepthM && q.depth > kMinPlacedDepthM) || !(length > 0.0) || !pq.allFinite()) return false;
+  ReferenceLine& out = reference_lines_[index];
+  out.line.direction = pq / length;
+  out.line.moment = p.point.cross(out.line.direction);
+  // d [n; d] / d [P; Q] for d = (Q - P) / |Q - P|, n = P x d.
+  const Eigen::Matrix3d g = (Eigen::Matrix3d::Identity() - out.line.direction * out.line.direction.transpose()) / length;
+  Eigen::Matrix<double, 6, 6> line_d_points;
+  line_d_points.topLeftCorner<3, 3>() = -Skew(out.line.direction) - Skew(p.point) * g;
+  line_d_points.topRightCorner<3, 3>() = Skew(p.point) * g;
+  line_d_points.bottomLeftCorner<3, 3>() = -g;
+  line_d_points.bottomRightCorner<3, 3>() = g;
+  // The endpoints' covariance, per image point: sigma_along^2 t t^T + sigma^2 m m^T (t along its
+  // segment, m across), in the order [x_P; x'_P; x_Q; x'_Q].
+  const auto endpoint_covariance = [&](const Segment2d& segment) {
+    const Eigen::Vector2d t = (segment.tail<2>() - segment.head<2>()).normalized(), m(-t.y(), t.x());
+    return Eigen::Matrix2d(options_.endpoint_placement_sigma_px * options_.endpoint_placement_sigma_px * t *
+                               t.transpose() +
+                           options_.endpoint_sigma_px * options_.endpoint_sigma_px * m * m.transpose());
+  };
+  const Eigen::Matrix2d left_covariance = endpoint_covariance(ref.left.segment);
+  const Eigen::Matrix2d right_covariance = endpoint_covariance(right);
+  Eigen::Matrix<double, 8, 8> pixel_covariance = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int k = 0; k < 4; ++k) pixel_covariance.block<2, 2>(2 * k, 2 * k) = k % 2 == 0 ? left_covariance : right_covariance;
+  Eigen::Matrix<double, 6, 8> points_d_pixels = Eigen::Matrix<double, 6, 8>::Zero();
+  points_d_pixels.topLeftCorner<3, 4>() = p.point_d_pixels;
+  points_d_pixels.bottomRightCorner<3, 4>() = q.point_d_pixels;
+  double parameters[kLineAmbientSize];
+  Eigen::Map<Eigen::Matrix<double, 6, 1>>(parameters) << out.line.moment, out.line.direction;
+  Eigen::Matrix<double, kLineAmbientSize, 4, Eigen::RowMajor> basis;
+  LineManifold().PlusJacobian(parameters, basis.data());
+  const Eigen::Matrix<double, 4, 6> tangent_from_line = (basis.transpose() * basis).ldlt().solve(basis.transpose());
+  const Eigen::Matrix<double, 4, 8> tangent_d_pixels = tangent_from_line * line_d_points * points_d_pixels;
+  out.line_d_tangent = basis;
+  out.tangent_covariance = tangent_d_pixels * pixel_covariance * tangent_d_pixels.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(out.tangent_covariance);
+  out.tangent_sqrt_covariance = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  out.refined = true;
   return true;
 }
 

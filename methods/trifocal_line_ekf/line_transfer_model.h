@@ -23,6 +23,10 @@
 //   noise "fixed": the paper's constant diagonal R;
 //   noise "propagated": R = sigma^2 N N^T + floor, N the Jacobian of the 4 residuals with
 //     respect to the 16 endpoint coordinates of the four observed segments.
+// A reference line in an epipolar plane of the rig is not defined by the pair and not measured,
+// unless the reference refinement triangulates it from keyframes or endpoint_placement_sigma_px
+// places it by its endpoints (below; docs/derivations.md): then its 3-D line L is projected,
+// l_t = K^-T (M L).moment, and R carries L's own covariance instead of the reference endpoints'.
 #pragma once
 
 #include <memory>
@@ -32,6 +36,7 @@
 #include "common/json_reader.h"
 #include "common/options.h"
 #include "geometry/plucker.h"
+#include "geometry/stereo_point.h"
 #include "methods/stereo_ekf/feature_model.h"
 #include "methods/trifocal_line_ekf/reference_refinement.h"
 
@@ -78,6 +83,18 @@ struct LineTransferOptions {
   // endpoint noise, so a line in an epipolar plane can pass the angle test and be triangulated
   // at any depth. 0 = off.
   double min_epipolar_extent_px = 0.0;
+  // Lines in an epipolar plane of the reference pair (the two tests above), which the transfer
+  // cannot measure, placed instead by their endpoints (0 = off): each end of the left segment
+  // and its partner in the right segment taken as one 3-D point (geometry/stereo_point.h: in a
+  // rectified rig, the point at their disparity), the line through the two points measured like
+  // a refined line, its covariance propagated from the endpoints with this standard deviation
+  // along each segment (where a detector's endpoints err) and endpoint_sigma_px across it. In a
+  // horizontal rig these are the horizontal lines, the only lines of a view of walls and shelves
+  // that measure the vertical translation (docs/frontend.md, twenty-fourth pass). The ends of a
+  // segment are not always one 3-D point in both images (an end occluded in one of them): such a
+  // line is placed at a wrong depth, which the gate must catch. Direction reference_to_current
+  // with the propagated R only.
+  double endpoint_placement_sigma_px = 0.0;
   // Direction kCurrentToReference only: features whose transfer intersects two planes at less
   // than this angle are not measured either (lines near the trifocal plane of the views a
   // transfer uses, Sec. 4; this also rejects distant lines). 0 = off; the paper preset uses 3.
@@ -170,6 +187,10 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
   // Reference line `index` becomes the refiner's refined line, with the covariance of its
   // tangent and that tangent's basis (at the line, LineManifold).
   void TakeRefinedLine(int index, const Eigen::Matrix<double, 6, 4>& tangent_basis);
+  // Reference line `index` (in an epipolar plane) placed by its endpoints
+  // (endpoint_placement_sigma_px); false (the line left unmeasured) when an end is not in front
+  // of the cameras.
+  bool PlaceByEndpoints(int index);
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;
   static int CountUsable(const std::vector<StereoLine>& lines);
   // True if the left segment lies within min_epipolar_angle_deg of its epipolar line.
@@ -199,6 +220,7 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
   double min_plane_sine_ = 0.0;
   Eigen::Vector3d left_epipole_;  // the right camera's centre in the left camera (normalised, homogeneous)
   StereoRig rig_;
+  StereoPointGeometry point_geometry_;
   Eigen::Matrix3d left_pixel_from_normalized_;
   Eigen::Matrix3d right_pixel_from_normalized_;
   Matrix6d right_adjoint_;  // Ad(right_from_left)

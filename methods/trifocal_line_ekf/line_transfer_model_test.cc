@@ -206,6 +206,58 @@ TEST(LineTransferModel, GatesLinesInTheEpipolarPlane) {
   EXPECT_EQ(strict.SetReference(scene.Frame(Rigid3d())), 0);
 }
 
+// A line in the rig's epipolar plane (horizontal) is not measured by the transfer; with
+// endpoint_placement_sigma_px it is placed by its endpoints' disparities, measured exactly at the
+// truth, and it measures the vertical translation, which the transfer's lines of a wall of
+// vertical edges do not. Its covariance is the endpoints' (sigma along each segment, sigma across)
+// carried through the placement: checked against central differences of the residual in the
+// reference endpoints, through the consider parameters' Jacobian G (G G^T = N Sigma N^T).
+TEST(LineTransferModel, PlacesLinesInTheEpipolarPlaneByTheirEndpoints) {
+  TinyScene scene;
+  scene.lines = {{{-0.1, 0.02, 0.5}, {0.12, 0.02, 0.55}}};  // horizontal, receding
+  LineTransferOptions o = Options("reference_to_current", "endpoint_distance");
+  o.epipolar.min_epipolar_angle_deg = 1.0;
+  o.endpoint_sigma_px = 0.4;
+  const StereoFrame ref = scene.Frame(Rigid3d()), cur = scene.Frame(SomeMotion());
+  {
+    LineTransferModel off(o);
+    off.Reset(scene.rig);
+    EXPECT_EQ(off.SetReference(ref), 0);
+  }
+  o.endpoint_placement_sigma_px = 2.0;
+  o.consider_structure = true;
+  LineTransferModel model(o);
+  model.Reset(scene.rig);
+  ASSERT_EQ(model.SetReference(ref), 1);
+  ASSERT_EQ(model.SetCurrent(cur), 1);
+  FeatureBlock block;
+  ASSERT_TRUE(model.Evaluate(0, SomeMotion(), true, &block));
+  EXPECT_LT(block.residual.norm(), 1e-9);
+  // 1 mm of vertical translation moves the line by about f * 1 mm / 0.5 m in both images.
+  Vector6d up = Vector6d::Zero();
+  up(1) = 0.001;
+  ASSERT_TRUE(model.Evaluate(0, ExpSE3(up) * SomeMotion(), false, &block));
+  EXPECT_GT(block.residual.cwiseAbs().minCoeff(), 0.5 * scene.rig.left.fy * 0.001 / 0.55);
+
+  FeatureModel::StructureJacobian g;
+  ASSERT_TRUE(model.EvaluateStructureJacobian(0, SomeMotion(), &g));
+  const Eigen::Matrix<double, 4, 8> n = NumericNoiseJacobian(o, scene.rig, ref, cur, 0, SomeMotion()).leftCols<8>();
+  Eigen::Matrix<double, 8, 8> sigma = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int k = 0; k < 4; ++k) {
+    const Segment2d& segment = k < 2 ? ref.left[0].segment : ref.right[0].segment;
+    const Eigen::Vector2d t = (segment.tail<2>() - segment.head<2>()).normalized(), m(-t.y(), t.x());
+    sigma.block<2, 2>(2 * k, 2 * k) = 2.0 * 2.0 * t * t.transpose() + 0.4 * 0.4 * m * m.transpose();
+  }
+  const Eigen::Matrix4d expected = n * sigma * n.transpose();
+  EXPECT_GT(expected.norm(), 1e-3);
+  EXPECT_LT((g * g.transpose() - expected).norm(), 1e-5 * expected.norm());
+
+  // Only with the direction and noise that measure a line by its projection.
+  o.direction = TransferDirection::kCurrentToReference;
+  o.consider_structure = false;
+  EXPECT_THROW(o.Check(), ConfigError);
+}
+
 // A short segment passes the angle gate on its noisy angle alone; the extent gate measures how
 // many pixels it spans across the epipolar lines (length x sine of the angle).
 TEST(LineTransferModel, GatesShortLinesByTheirExtentAcrossEpipolarLines) {

@@ -70,6 +70,7 @@
 
 #include "common/json_reader.h"
 #include "common/options.h"
+#include "geometry/stereo_point.h"
 #include "methods/stereo_ekf/feature_model.h"
 
 namespace slt {
@@ -103,45 +104,6 @@ struct PointTransferOptions {
 const OptionSchema<PointTransferOptions>& PointTransferOptionsSchema();
 void ReadPointTransferOptions(JsonReader& reader, PointTransferOptions* options);
 nlohmann::json PointTransferOptionsToJson(const PointTransferOptions& options);
-
-// A reference point: x's ray met by the plane E^T l'.
-struct ReferencePoint {
-  Eigen::Vector3d point;                       // X in the reference left camera frame (m)
-  Eigen::Matrix<double, 3, 4> point_d_pixels;  // d X / d [x; x'] (pixel coordinates)
-  double depth = 0.0;                          // X.z
-  double ray_plane_sine = 0.0;                 // sine of the angle between the ray and the plane
-};
-
-// The epipolar geometry of a rig, for point transfer and endpoint pairing (pixel coordinates).
-class StereoPointGeometry {
- public:
-  StereoPointGeometry() = default;
-  explicit StereoPointGeometry(const StereoRig& rig);
-
-  // F with x'^T F x = 0 for homogeneous pixel points x (left) and x' (right):
-  // F = K'^-T [t_E]_x R_E K^-1.
-  const Eigen::Matrix3d& fundamental() const { return fundamental_; }
-  // Distance (px) of the right point to the epipolar line of the left point.
-  double EpipolarDistance(const Eigen::Vector2d& left, const Eigen::Vector2d& right) const;
-  // l' of the transfer, in the right camera's normalised coordinates (K'^T of the pixel line).
-  Eigen::Vector3d TransferLine(const Eigen::Vector2d& left, const Eigen::Vector2d& right) const;
-  // X with its Jacobian with respect to the pixels (when `with_jacobian`).
-  void Point(const Eigen::Vector2d& left, const Eigen::Vector2d& right, bool with_jacobian,
-             ReferencePoint* out) const;
-
- private:
-  Eigen::Matrix3d fundamental_ = Eigen::Matrix3d::Zero();
-  Eigen::Matrix3d left_k_inverse_ = Eigen::Matrix3d::Identity();
-  Eigen::Matrix3d right_kt_ = Eigen::Matrix3d::Identity();  // K'^T: pixel lines -> normalised
-  // pi' = plane_from_pixel_line_ * l'_pixel = E^T K'^T l'_pixel (4x3).
-  Eigen::Matrix<double, 4, 3> plane_from_pixel_line_ = Eigen::Matrix<double, 4, 3>::Zero();
-};
-
-// True when the stereo pairing of a line's endpoints is (a <-> b', b <-> a') by the rule above.
-bool StereoEndpointsSwapped(const StereoPointGeometry& geometry, const Segment2d& left, const Segment2d& right,
-                            double ambiguity_px);
-// True when the current segment runs the other way along the line from the reference one.
-bool TemporalEndpointsSwapped(const Segment2d& reference, const Segment2d& current);
 
 // A reference endpoint matched with a current one (PointTransferModel's features).
 struct PointTransferMatch {
