@@ -6,8 +6,8 @@
 
 #include "dataset/association.h"
 #include "geometry/trifocal.h"
-#include "optim/line_sfm_manifolds.h"
 #include "methods/pose_tracker.h"
+#include "optim/line_sfm_manifolds.h"
 
 namespace slt {
 namespace {
