@@ -521,26 +521,26 @@ bool LineTransferModel::PlaceByEndpoints(int index) {
   LineManifold().PlusJacobian(parameters, basis.data());
   const Eigen::Matrix<double, 4, 6> tangent_from_line = (basis.transpose() * basis).ldlt().solve(basis.transpose());
   const Eigen::Matrix<double, 4, 8> tangent_d_pixels = tangent_from_line * line_d_points * points_d_pixels;
-  out.line_d_tangent = basis;
-  out.tangent_covariance = tangent_d_pixels * pixel_covariance * tangent_d_pixels.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(out.tangent_covariance);
-  out.tangent_sqrt_covariance = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
-  out.refined = true;
+  SetLineCovariance(basis, tangent_d_pixels * pixel_covariance * tangent_d_pixels.transpose(), &out);
   return true;
+}
+
+void LineTransferModel::SetLineCovariance(const Eigen::Matrix<double, 6, 4>& tangent_basis,
+                                          const Eigen::Matrix4d& tangent_covariance, ReferenceLine* line) const {
+  line->line_d_tangent = tangent_basis;
+  line->tangent_covariance = tangent_covariance;
+  if (options_.consider_structure) {
+    // A square root of a positive semi-definite matrix (an LLT fails on a singular one).
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(tangent_covariance);
+    line->tangent_sqrt_covariance = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  }
+  line->refined = true;
 }
 
 void LineTransferModel::TakeRefinedLine(int index, const Eigen::Matrix<double, 6, 4>& tangent_basis) {
   ReferenceLine& line = reference_lines_[index];
   line.line = refiner_->Line(index);
-  line.line_d_tangent = tangent_basis;
-  line.tangent_covariance = refiner_->Covariance(index);
-  if (options_.consider_structure) {
-    // A square root of a positive semi-definite matrix (an LLT fails on a singular one).
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(line.tangent_covariance);
-    line.tangent_sqrt_covariance =
-        eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
-  }
-  line.refined = true;
+  SetLineCovariance(tangent_basis, refiner_->Covariance(index), &line);
   ++line.version;
 }
 

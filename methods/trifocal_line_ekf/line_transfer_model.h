@@ -191,6 +191,10 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
   // (endpoint_placement_sigma_px); false (the line left unmeasured) when an end is not in front
   // of the cameras.
   bool PlaceByEndpoints(int index);
+  // A placed or refined line's uncertainty: its tangent basis and covariance (and the square
+  // root the consider update uses); marks it refined.
+  void SetLineCovariance(const Eigen::Matrix<double, 6, 4>& tangent_basis, const Eigen::Matrix4d& tangent_covariance,
+                         ReferenceLine* line) const;
   bool MakeSegment(const Segment2d& segment, const PinholeCamera& camera, ObservedSegment* out) const;
   static int CountUsable(const std::vector<StereoLine>& lines);
   // True if the left segment lies within min_epipolar_angle_deg of its epipolar line.
