@@ -89,7 +89,8 @@ class FeatureModel {
   virtual int SetCurrent(const StereoFrame& frame) = 0;
   virtual int NumFeatures() const = 0;
   // Number of measurable stereo-matched features in the frame given to the last SetCurrent: what
-  // SetReference would return for it.
+  // SetReference would return for it, less the features a model places only weakly (those
+  // LineTransferModel places by their endpoints), which a new reference is not taken for.
   virtual int CurrentStereoFeatures() const = 0;
   // Evaluates feature `index` at `cam_from_ref`, setting every field of `block` it is asked for
   // (measured_rows included). Returns false when the feature cannot be measured at this pose

@@ -21,6 +21,20 @@ constexpr double kMinPlacedDepthM = 0.05;
 // The floor of a propagated R on the theta rows of the (theta, lambda) residual (rad).
 constexpr double kCovarianceFloorRad = 1e-4;
 
+// The left pseudo-inverse B^+ = (B^T B)^-1 B^T of a line's tangent basis B (6 x 4): it takes a
+// change of the Pluecker line [n; d] to the tangent coordinates its covariance is kept in.
+Eigen::Matrix<double, 4, 6> TangentFromLine(const Eigen::Matrix<double, 6, 4>& basis) {
+  return (basis.transpose() * basis).ldlt().solve(basis.transpose());
+}
+
+// The options that use the reference lines' covariance need it: it is propagated from the
+// endpoints in the reference_to_current direction only.
+std::string NeedsPropagatedReferenceToCurrent(bool used, const LineTransferOptions& o) {
+  return used && (o.direction != TransferDirection::kReferenceToCurrent || o.noise != MeasurementNoise::kPropagated)
+             ? std::string("needs direction reference_to_current and noise propagated")
+             : std::string();
+}
+
 }  // namespace
 
 const OptionSchema<EpipolarLineOptions>& EpipolarLineOptionsSchema() {
@@ -58,24 +72,12 @@ const OptionSchema<LineTransferOptions>& LineTransferOptionsSchema() {
                  "joint refinement of the reference lines with keyframe poses (issue 16)")
           .Field("consider_structure", &O::consider_structure,
                  "the reference lines' error as consider parameters of the filter (Schmidt-Kalman)")
-          .Check("consider_structure", [](const O& o) {
-            return o.consider_structure && (o.direction != TransferDirection::kReferenceToCurrent ||
-                                            o.noise != MeasurementNoise::kPropagated)
-                       ? std::string("needs direction reference_to_current and noise propagated")
-                       : std::string();
-          })
-          .Check("endpoint_placement_sigma_px", [](const O& o) {
-            return o.endpoint_placement_sigma_px > 0.0 && (o.direction != TransferDirection::kReferenceToCurrent ||
-                                                           o.noise != MeasurementNoise::kPropagated)
-                       ? std::string("needs direction reference_to_current and noise propagated")
-                       : std::string();
-          })
-          .Check("refinement.enabled", [](const O& o) {
-            return o.refinement.enabled && (o.direction != TransferDirection::kReferenceToCurrent ||
-                                            o.noise != MeasurementNoise::kPropagated)
-                       ? std::string("needs direction reference_to_current and noise propagated")
-                       : std::string();
-          });
+          .Check("consider_structure",
+                 [](const O& o) { return NeedsPropagatedReferenceToCurrent(o.consider_structure, o); })
+          .Check("endpoint_placement_sigma_px",
+                 [](const O& o) { return NeedsPropagatedReferenceToCurrent(o.endpoint_placement_sigma_px > 0.0, o); })
+          .Check("refinement.enabled",
+                 [](const O& o) { return NeedsPropagatedReferenceToCurrent(o.refinement.enabled, o); });
   return schema;
 }
 
@@ -230,23 +232,25 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
       const int index = static_cast<int>(i);
       refiner_->SetCarriedLine(index, TransformPluecker(last_cam_from_ref_, old.line), Eigen::Matrix4d::Identity());
       const Eigen::Matrix<double, 6, 4> basis = refiner_->TangentBasis(index);
-      const Eigen::Matrix<double, 4, 6> pseudo_inverse =
-          (basis.transpose() * basis).ldlt().solve(basis.transpose());
-      const Eigen::Matrix<double, 4, 4> move = pseudo_inverse * transform * old.line_d_tangent;
+      const Eigen::Matrix<double, 4, 4> move = TangentFromLine(basis) * transform * old.line_d_tangent;
       const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
       refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
       if (refiner_->Refined(index)) TakeRefinedLine(index, basis);
     }
   }
   matches_.clear();
-  // The lines placed by their endpoints count with the rest: the tracker's reference policy
-  // weighs the features it can measure.
+  // The lines placed by their endpoints count with the rest: the fraction of the reference left
+  // (the tracker's reference policy) is of every line it measures, as are the survivors.
   return CountUsable(reference_) + placed;
 }
 
 int LineTransferModel::SetCurrent(const StereoFrame& frame) {
   last_pose_valid_ = false;
   CollectStereoLines(frame, &current_);
+  // What a switch to this frame would gain leaves out the lines it would place by their
+  // endpoints, unlike SetReference: those measure little more than the direction across the
+  // epipolar planes, and counting them switched to frames rich only in them
+  // (docs/frontend.md, twenty-fifth pass).
   current_stereo_ = CountUsable(current_);
   matches_.clear();
   JoinById(reference_, current_, [&](size_t i, size_t j) {
@@ -519,8 +523,7 @@ bool LineTransferModel::PlaceByEndpoints(int index) {
   Eigen::Map<Eigen::Matrix<double, 6, 1>>(parameters) << out.line.moment, out.line.direction;
   Eigen::Matrix<double, kLineAmbientSize, 4, Eigen::RowMajor> basis;
   LineManifold().PlusJacobian(parameters, basis.data());
-  const Eigen::Matrix<double, 4, 6> tangent_from_line = (basis.transpose() * basis).ldlt().solve(basis.transpose());
-  const Eigen::Matrix<double, 4, 8> tangent_d_pixels = tangent_from_line * line_d_points * points_d_pixels;
+  const Eigen::Matrix<double, 4, 8> tangent_d_pixels = TangentFromLine(basis) * line_d_points * points_d_pixels;
   SetLineCovariance(basis, tangent_d_pixels * pixel_covariance * tangent_d_pixels.transpose(), &out);
   return true;
 }
