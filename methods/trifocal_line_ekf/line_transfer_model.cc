@@ -248,9 +248,8 @@ int LineTransferModel::SetCurrent(const StereoFrame& frame) {
   last_pose_valid_ = false;
   CollectStereoLines(frame, &current_);
   // What a switch to this frame would gain leaves out the lines it would place by their
-  // endpoints, unlike SetReference: those measure little more than the direction across the
-  // epipolar planes, and counting them switched to frames rich only in them
-  // (docs/frontend.md, twenty-fifth pass).
+  // endpoints, unlike SetReference: those are placed far less precisely (sigma_along along each
+  // segment), and counting them made the switches worse (docs/frontend.md, twenty-fifth pass).
   current_stereo_ = CountUsable(current_);
   matches_.clear();
   JoinById(reference_, current_, [&](size_t i, size_t j) {
