@@ -109,6 +109,16 @@ bool LineManifold::PlusJacobian(const double* x, double* jacobian) const {
   return true;
 }
 
+Eigen::Matrix<double, kLineAmbientSize, 4> LineTangentBasis(const double* parameters) {
+  RowMajor6x4 basis;
+  LineManifold().PlusJacobian(parameters, basis.data());
+  return basis;
+}
+
+Eigen::Matrix<double, 4, kLineAmbientSize> LineTangentFromAmbient(const Eigen::Matrix<double, kLineAmbientSize, 4>& basis) {
+  return (basis.transpose() * basis).ldlt().solve(basis.transpose());
+}
+
 bool LineManifold::Minus(const double* y, const double* x, double* y_minus_x) const {
   const PlueckerLine from = LineFromParameters(x);
   PlueckerLine to = LineFromParameters(y);

@@ -55,6 +55,12 @@ Rigid3d PoseFromParameters(const double* parameters);
 bool LineToParameters(const PlueckerLine& line, double* parameters);
 PlueckerLine LineFromParameters(const double* parameters);
 
+// The LineManifold's tangent basis at `parameters`, B = d Plus(x, delta) / d delta at delta = 0
+// (6 x 4), and its left pseudo-inverse B^+ = (B^T B)^-1 B^T, which takes a change of [n; d] to
+// the tangent coordinates a line's covariance is kept in (B is not orthonormal where n != 0).
+Eigen::Matrix<double, kLineAmbientSize, 4> LineTangentBasis(const double* parameters);
+Eigen::Matrix<double, 4, kLineAmbientSize> LineTangentFromAmbient(const Eigen::Matrix<double, kLineAmbientSize, 4>& basis);
+
 // e1, e2 with (e1, e2, d) a right-handed orthonormal basis, for a unit d. A fixed function of d
 // (so that Plus and PlusJacobian at one point agree); not continuous over the sphere, which a
 // tangent basis does not need to be.

@@ -138,5 +138,18 @@ TEST(NormalPlaneBasis, IsRightHandedAndOrthonormal) {
   }
 }
 
+// The tangent basis is the manifold's Plus Jacobian, and its left pseudo-inverse undoes it on a
+// line with a moment (where the basis is not orthonormal).
+TEST(LineTangentBasis, IsThePlusJacobianAndItsPseudoInverseUndoesIt) {
+  std::mt19937_64 rng(9);
+  const ceres::Vector x = RandomLine(rng);
+  Eigen::Matrix<double, 6, 4, Eigen::RowMajor> jacobian;
+  ASSERT_TRUE(LineManifold().PlusJacobian(x.data(), jacobian.data()));
+  const Eigen::Matrix<double, 6, 4> basis = LineTangentBasis(x.data());
+  EXPECT_EQ((basis - jacobian).norm(), 0.0);
+  EXPECT_GT((basis.transpose() * basis - Eigen::Matrix4d::Identity()).norm(), 1e-3);
+  EXPECT_LT((LineTangentFromAmbient(basis) * basis - Eigen::Matrix4d::Identity()).norm(), 1e-12);
+}
+
 }  // namespace
 }  // namespace slt

@@ -21,12 +21,6 @@ constexpr double kMinPlacedDepthM = 0.05;
 // The floor of a propagated R on the theta rows of the (theta, lambda) residual (rad).
 constexpr double kCovarianceFloorRad = 1e-4;
 
-// The left pseudo-inverse B^+ = (B^T B)^-1 B^T of a line's tangent basis B (6 x 4): it takes a
-// change of the Pluecker line [n; d] to the tangent coordinates its covariance is kept in.
-Eigen::Matrix<double, 4, 6> TangentFromLine(const Eigen::Matrix<double, 6, 4>& basis) {
-  return (basis.transpose() * basis).ldlt().solve(basis.transpose());
-}
-
 // The options that use the reference lines' covariance need it: it is propagated from the
 // endpoints in the reference_to_current direction only.
 std::string NeedsPropagatedReferenceToCurrent(bool used, const LineTransferOptions& o) {
@@ -232,7 +226,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
       const int index = static_cast<int>(i);
       refiner_->SetCarriedLine(index, TransformPluecker(last_cam_from_ref_, old.line), Eigen::Matrix4d::Identity());
       const Eigen::Matrix<double, 6, 4> basis = refiner_->TangentBasis(index);
-      const Eigen::Matrix<double, 4, 4> move = TangentFromLine(basis) * transform * old.line_d_tangent;
+      const Eigen::Matrix<double, 4, 4> move = LineTangentFromAmbient(basis) * transform * old.line_d_tangent;
       const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
       refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
       if (refiner_->Refined(index)) TakeRefinedLine(index, basis);
@@ -519,10 +513,9 @@ bool LineTransferModel::PlaceByEndpoints(int index) {
   points_d_pixels.topLeftCorner<3, 4>() = p.point_d_pixels;
   points_d_pixels.bottomRightCorner<3, 4>() = q.point_d_pixels;
   double parameters[kLineAmbientSize];
-  Eigen::Map<Eigen::Matrix<double, 6, 1>>(parameters) << out.line.moment, out.line.direction;
-  Eigen::Matrix<double, kLineAmbientSize, 4, Eigen::RowMajor> basis;
-  LineManifold().PlusJacobian(parameters, basis.data());
-  const Eigen::Matrix<double, 4, 8> tangent_d_pixels = TangentFromLine(basis) * line_d_points * points_d_pixels;
+  if (!LineToParameters(out.line, parameters)) return false;
+  const Eigen::Matrix<double, 6, 4> basis = LineTangentBasis(parameters);
+  const Eigen::Matrix<double, 4, 8> tangent_d_pixels = LineTangentFromAmbient(basis) * line_d_points * points_d_pixels;
   SetLineCovariance(basis, tangent_d_pixels * pixel_covariance * tangent_d_pixels.transpose(), &out);
   return true;
 }

@@ -150,9 +150,7 @@ bool ReferenceRefiner::CountFrame(const Rigid3d& cam_from_ref) {
 }
 
 Eigen::Matrix<double, 6, 4> ReferenceRefiner::TangentBasis(int index) const {
-  Eigen::Matrix<double, kLineAmbientSize, 4, Eigen::RowMajor> j;
-  line_manifold_.PlusJacobian(lines_[index].parameters, j.data());
-  return j;
+  return LineTangentBasis(lines_[index].parameters);
 }
 
 bool ReferenceRefiner::AddKeyframeAndSolve(const Rigid3d& cam_from_ref, const std::vector<Observation>& observations,
