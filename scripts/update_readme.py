@@ -267,7 +267,7 @@ FRONTEND_DRAWS = (("frontend", "room 752x480 (loop)", "room loop, 752 × 480"),
 
 def frontend_draws_table(r):
     """trifocal_line_ekf from rendered images: ten draws of each scene (results/frontend/draws.md), a hundred
-    of the paper scene with its options (results/frontend/paper_scene_tracker/draws.md) and two hundred of
+    of the paper scene with its options (results/frontend/paper_scene_tracker/draws.md) and three hundred of
     it at the paper protocol's 100 frames (results/frontend/paper_scene_100_frames/draws.md)."""
     lines = ["| scene, options | draws | ATE from the images, median / max | images / the same tracker on "
              "the truth with the front end's noise (paper scene: the synthetic protocol), median / max | draws within 1.5× "

@@ -376,6 +376,7 @@ TEST_F(EndToEnd, MeasureFrontendOverSeveralDraws) {
 TEST_F(EndToEnd, ShippedTrackerConfigsAreValid) {
   for (const auto& [file, expected] :
        {std::pair{std::string("paper_scene.json"), std::string(R"("keyframe_interval": 3)")},
+        {std::string("paper_scene.json"), std::string(R"("map_association_px": 1.0)")},
         {std::string("endpoint_placement.json"), std::string(R"("endpoint_placement_sigma_px": 6.0)")}}) {
     const Result r = RunCommand(Bin("track") + " --method trifocal_line_ekf --print-config --tracker-config " +
                                 std::string(SLT_SOURCE_DIR) + "/frontend/tracker_configs/" + file);

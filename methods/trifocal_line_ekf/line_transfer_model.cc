@@ -105,6 +105,7 @@ LineTransferModel::LineTransferModel(const LineTransferOptions& options) : optio
     const double sigma_px = options_.refinement.endpoint_sigma_px > 0.0 ? options_.refinement.endpoint_sigma_px
                                                                          : options_.endpoint_sigma_px;
     refiner_ = std::make_unique<ReferenceRefiner>(options_.refinement, sigma_px);
+    line_map_ = ReferenceLineMap(options_.refinement.map_max_age);
   }
 }
 
@@ -131,6 +132,7 @@ void LineTransferModel::Reset(const StereoRig& rig) {
   current_.clear();
   matches_.clear();
   current_stereo_ = 0;
+  line_map_.Clear();
   if (refiner_) refiner_->Reset(rig);
 }
 
@@ -184,14 +186,21 @@ void LineTransferModel::CollectStereoLines(const StereoFrame& frame, std::vector
 }
 
 int LineTransferModel::SetReference(const StereoFrame& frame) {
-  // Refined lines of the previous reference, carried into the new one when this frame's pose
-  // is known (RefineStructure ran on it): L_new = new_from_old L_old, with the covariance of
-  // the tangent moved along, C_new = B_new^+ A B_old C_old B_old^T A^T B_new^+T (A the
-  // transform of [n; d], B the tangent bases).
-  std::vector<std::pair<std::int64_t, ReferenceLine>> carried;
-  if (refiner_ && last_pose_valid_ && options_.refinement.carry_over) {
+  // The refined lines of the reference pairs so far (this one's and, with
+  // refinement.map_max_age, earlier ones'), moved into the new pair's frame when this frame's
+  // pose is known (RefineStructure ran on it), to be carried into it as priors
+  // (reference_line_map.h).
+  const bool carry = refiner_ && options_.refinement.carry_over;
+  if (carry) {
+    line_map_.Age();
     for (size_t i = 0; i < reference_.size(); ++i) {
-      if (reference_lines_[i].refined) carried.emplace_back(reference_[i].id, reference_lines_[i]);
+      const ReferenceLine& line = reference_lines_[i];
+      if (line.refined) line_map_.Keep(reference_[i].id, {line.line, line.line_d_tangent, line.tangent_covariance});
+    }
+    if (last_pose_valid_) {
+      line_map_.Move(last_cam_from_ref_);
+    } else {
+      line_map_.Clear();
     }
   }
   CollectStereoLines(frame, &reference_);
@@ -214,22 +223,28 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
       refiner_->SetLine(static_cast<int>(i), reference_lines_[i].line, !reference_[i].degenerate,
                         reference_[i].left.segment, reference_[i].right.segment, reference_[i].left.line);
     }
-    Matrix6d transform = Matrix6d::Zero();  // [n; d] -> new frame: [R, [t]x R; 0, R]
-    transform.topLeftCorner<3, 3>() = last_cam_from_ref_.rotation;
-    transform.topRightCorner<3, 3>() = Skew(last_cam_from_ref_.translation) * last_cam_from_ref_.rotation;
-    transform.bottomRightCorner<3, 3>() = last_cam_from_ref_.rotation;
-    size_t c = 0;
-    for (size_t i = 0; i < reference_.size() && c < carried.size(); ++i) {
-      while (c < carried.size() && carried[c].first < reference_[i].id) ++c;
-      if (c == carried.size() || carried[c].first != reference_[i].id) continue;
-      const ReferenceLine& old = carried[c].second;
+  }
+  if (carry && line_map_.size() > 0) {
+    // A line of the new pair is a map line by its id, else (map_association_px) by its
+    // projection, among the map lines whose ids the new pair does not hold (reference_ is
+    // sorted by id, so map_excluded_ is ascending).
+    map_excluded_.clear();
+    for (const StereoLine& line : reference_) map_excluded_.push_back(line.id);
+    const double association_px = options_.refinement.map_association_px;
+    for (size_t i = 0; i < reference_.size(); ++i) {
+      std::int64_t id = reference_[i].id;
+      const ReferenceLineMap::Line* carried = line_map_.Find(id);
+      if (carried == nullptr && association_px > 0.0 &&
+          line_map_.FindByProjection(rig_, reference_[i].left.segment, reference_[i].right.segment, association_px,
+                                     map_excluded_, &id)) {
+        carried = line_map_.Find(id);
+      }
+      if (carried == nullptr) continue;
       const int index = static_cast<int>(i);
-      refiner_->SetCarriedLine(index, TransformPluecker(last_cam_from_ref_, old.line), Eigen::Matrix4d::Identity());
-      const Eigen::Matrix<double, 6, 4> basis = refiner_->TangentBasis(index);
-      const Eigen::Matrix<double, 4, 4> move = LineTangentFromAmbient(basis) * transform * old.line_d_tangent;
-      const Eigen::Matrix4d covariance = move * old.tangent_covariance * move.transpose();
-      refiner_->SetCarriedLine(index, refiner_->Line(index), covariance);
-      if (refiner_->Refined(index)) TakeRefinedLine(index, basis);
+      refiner_->SetCarriedLine(index, carried->line, carried->tangent_covariance);
+      if (refiner_->Refined(index)) TakeRefinedLine(index, carried->line_d_tangent);
+      // Found under another id: from now on it is this pair's line (kept under its new id).
+      if (id != reference_[i].id) line_map_.Erase(id);
     }
   }
   matches_.clear();

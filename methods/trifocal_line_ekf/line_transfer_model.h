@@ -38,6 +38,7 @@
 #include "geometry/plucker.h"
 #include "geometry/stereo_point.h"
 #include "methods/stereo_ekf/feature_model.h"
+#include "methods/trifocal_line_ekf/reference_line_map.h"
 #include "methods/trifocal_line_ekf/reference_refinement.h"
 
 namespace slt {
@@ -242,6 +243,9 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
   // SetCurrent: a new reference pair taken at that frame carries the refined lines over with it.
   Rigid3d last_cam_from_ref_;
   bool last_pose_valid_ = false;
+  // The refined lines carried into new reference pairs (refinement.carry_over).
+  ReferenceLineMap line_map_;
+  std::vector<std::int64_t> map_excluded_;  // scratch: the new pair's ids, ascending
 
   std::vector<StereoLine> reference_;
   std::vector<ReferenceLine> reference_lines_;  // parallel to reference_

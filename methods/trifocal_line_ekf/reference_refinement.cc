@@ -63,6 +63,15 @@ const OptionSchema<ReferenceRefinementOptions>& ReferenceRefinementOptionsSchema
                  "endpoint noise the solve weighs by, px (0 = the measurement's endpoint_sigma_px)")
           .Field("carry_over", &O::carry_over,
                  "a new reference pair starts from the refined lines it shares with the previous one (as priors)")
+          .Field("map_max_age", &O::map_max_age, AtLeast(0),
+                 "with carry_over, also the refined lines of this many reference pairs before the previous one")
+          .Field("map_association_px", &O::map_association_px, AtLeast(0.0),
+                 "with carry_over, a new reference line takes the kept line whose projection lies within this of "
+                 "its endpoints in both images, px (0 = by id only)")
+          .Check("map_max_age",
+                 [](const O& o) { return o.map_max_age > 0 && !o.carry_over ? "needs carry_over" : ""; })
+          .Check("map_association_px",
+                 [](const O& o) { return o.map_association_px > 0.0 && !o.carry_over ? "needs carry_over" : ""; })
           .Field("min_triangulation_angle_deg", &O::min_triangulation_angle_deg, InRange(0.0, 90.0, "[)"),
                  "lines the reference pair does not define: triangulated from a keyframe at this plane angle (0 = never, the default)")
           .Field("triangulated_max_sigma_m", &O::triangulated_max_sigma_m, AtLeast(0.0),

@@ -126,6 +126,13 @@ struct ReferenceRefinementOptions {
   // into its frame with the current pose and kept as priors (SetCarriedLine), instead of their
   // stereo triangulation from the new pair alone.
   bool carry_over = true;
+  // With carry_over, the refined lines of earlier reference pairs too, kept for map_max_age
+  // pairs after the last one that refined them, and found by id or, with map_association_px,
+  // by their projection into the new pair within that many px (reference_line_map.h).
+  // 0 and 0: the previous pair's lines by id only, the plain carry-over. Off by default:
+  // measured on the paper scene's images only (docs/frontend.md, twenty-sixth pass).
+  int map_max_age = 0;
+  double map_association_px = 0.0;
 
   void Check(const std::string& where = "reference refinement options", const std::string& path = "") const;
 };
