@@ -17,10 +17,8 @@ void ReferenceLineMap::Age() {
 void ReferenceLineMap::Keep(std::int64_t id, const Line& line) { lines_[id] = Entry{line, 0}; }
 
 void ReferenceLineMap::Move(const Rigid3d& new_from_old) {
-  Eigen::Matrix<double, 6, 6> transform = Eigen::Matrix<double, 6, 6>::Zero();  // [n; d] -> new frame
-  transform.topLeftCorner<3, 3>() = new_from_old.rotation;
-  transform.topRightCorner<3, 3>() = Skew(new_from_old.translation) * new_from_old.rotation;
-  transform.bottomRightCorner<3, 3>() = new_from_old.rotation;
+  // [n; d] -> new frame: [R, [t]x R; 0, R], the SE(3) adjoint in the [v; w] ordering.
+  const Matrix6d transform = Adjoint(new_from_old);
   double parameters[kLineAmbientSize];
   for (auto it = lines_.begin(); it != lines_.end();) {
     Line& line = it->second.line;

@@ -7,7 +7,8 @@
 // reference is known, a line the two pairs share is carried into the new one as a prior
 // (carry_over):
 //     L_new = M L_old,   C_new = B_new^+ A(M) B_old C_old B_old^T A(M)^T B_new^+T,
-// with A(M) the 6x6 map of [n; d] (TransformPluecker), B the tangent bases
+// with A(M) = [R, [t]x R; 0, R] the 6x6 map of [n; d] (TransformPluecker; geometry/se3.h's
+// Adjoint), B the tangent bases
 // (optim/line_sfm_manifolds.h LineTangentBasis) and B^+ their left pseudo-inverses. Because
 // both the prior and the new pair's pose come from the old reference, such a line ties the new
 // reference to the old one's world frame: the poses measured against it do not inherit the new
