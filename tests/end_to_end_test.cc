@@ -247,6 +247,8 @@ TEST_F(EndToEnd, TrackImagesOnARenderedRoom) {
   // 244 mm with small changes of the front end: no guard at all.)
   EXPECT_LT(ate_images, 0.015) << "perfect observations: " << ate_perfect;
   EXPECT_LT(ate_perfect, 0.005);
+  RecordProperty("ate_images_mm", std::to_string(1e3 * ate_images));
+  RecordProperty("ate_perfect_mm", std::to_string(1e3 * ate_perfect));
   EXPECT_NE(summary.find(", 0 lost;"), std::string::npos) << summary;
   // Every lost line has one reason: per frame the log's lost_* columns add up to its lost
   // column, and over the run to the summary's "lines lost".
@@ -368,6 +370,63 @@ TEST_F(EndToEnd, MeasureFrontendOverSeveralDraws) {
     const std::string note_line = text.substr(note, text.find('\n', note) - note);
     EXPECT_NE(note_line.find(expected), std::string::npos) << note_line;
     EXPECT_NE(note_line.find(R"("min_disparity_px")"), std::string::npos) << "the scene's own options: " << note_line;
+  }
+}
+
+// The cell of `row` under the column named `name` of the table whose header is `header`.
+std::string CellNamed(const std::string& header, const std::string& row, const std::string& name) {
+  std::stringstream cells(header);
+  std::string cell;
+  std::getline(cells, cell, '|');  // before the first pipe
+  for (int column = 0; std::getline(cells, cell, '|'); ++column) {
+    const size_t first = cell.find_first_not_of(' ');
+    if (first != std::string::npos && cell.substr(first, cell.find_last_not_of(' ') - first + 1) == name) {
+      return Cell(row, column);
+    }
+  }
+  ADD_FAILURE() << "no column '" << name << "' in " << header;
+  return "nan";
+}
+
+// Issue 18's numbers on the rendered room (752 x 480) and corridor (640 x 480) at the issue's
+// motion (200 frames, about 1 cm per frame), one draw each, as results/frontend measures them
+// over ten: the default detector's recall of the visible ground-truth segments >= 40 px (within
+// 2 px and 2 deg) >= 90 %, stereo matches and temporal tracks >= 99 % correct (same criteria), and
+// the ATE of trifocal_line_ekf on the images within 1.5x of the same tracker on the front end's
+// tracks' ground truth with Gaussian noise of the front end's endpoint RMS. Bounds are the
+// issue's; the numbers measured on this draw are in docs/frontend.md (Tests). The paper scene's
+// bound is a median over hundreds of draws (results/frontend/paper_scene_100_frames), not a
+// test.
+TEST_F(EndToEnd, MeasureFrontendMeetsIssue18sBoundsOnTheRoomAndCorridor) {
+  for (const auto& [scene, out] : {std::pair{std::string("room 752x480"), std::string("room")},
+                                   std::pair{std::string("corridor 640x480"), std::string("corridor")}}) {
+    const Result r = RunCommand(Bin("measure_frontend") + " --frames 200 --step 20 --detector edlines --scene '" +
+                                scene + "' --out " + Path(out));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::vector<std::string> detector_rows = RowsStartingWith(Path(out + "/detectors.md"), "| ");
+    const std::vector<std::string> sequence_rows = RowsStartingWith(Path(out + "/sequences.md"), "| ");
+    // Each table: its header, then the scene's row (sequences.md: the accuracy table first).
+    ASSERT_EQ(detector_rows.size(), 2u) << r.output;
+    ASSERT_GE(sequence_rows.size(), 2u) << r.output;
+    const std::string& detector = detector_rows[1];
+    const std::string& sequence = sequence_rows[1];
+    ASSERT_EQ(detector.rfind("| " + scene, 0), 0u) << detector;
+    ASSERT_EQ(sequence.rfind("| " + scene, 0), 0u) << sequence;
+    const auto value = [](const std::string& header, const std::string& row, const std::string& name) {
+      return std::stod(CellNamed(header, row, name));
+    };
+    EXPECT_GE(value(detector_rows[0], detector, "GT segments >= 40 px"), 1000) << detector;
+    EXPECT_GE(value(detector_rows[0], detector, "recall"), 0.90) << detector;
+    const std::string& header = sequence_rows[0];
+    EXPECT_EQ(CellNamed(header, sequence, "frames"), "200");
+    EXPECT_EQ(CellNamed(header, sequence, "lost"), "0") << sequence;
+    EXPECT_GE(value(header, sequence, "stereo matches"), 100) << sequence;
+    EXPECT_GE(value(header, sequence, "correct (of judged)"), 0.99) << sequence;
+    EXPECT_GE(value(header, sequence, "tracks (>= 2 frames, judged)"), 90) << sequence;
+    EXPECT_GE(value(header, sequence, "correct"), 0.99) << sequence;
+    EXPECT_LE(value(header, sequence, "ratio images / noisy"), 1.5) << sequence;
+    RecordProperty(out + "_recall", CellNamed(detector_rows[0], detector, "recall"));
+    RecordProperty(out + "_ratio_images_noisy", CellNamed(header, sequence, "ratio images / noisy"));
   }
 }
 
