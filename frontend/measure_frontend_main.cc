@@ -22,7 +22,10 @@
 //    on some ground-truth segment, the RMS perpendicular endpoint error of those, and the
 //    single-thread time per image; and the recall of those ground-truth segments that are
 //    photometrically visible (frontend_audit.h: the step across them in the same image rendered
-//    without sensor noise at least the noise of a two-pixel difference).
+//    without sensor noise at least the noise of a two-pixel difference). With --draws N > 1, the
+//    front end's detector (--config's, EDLines by default) also on the same frames of draws
+//    S + 1, ..., S + N - 1: its recall pooled over the draws, the worst and best draw's, and
+//    each draw's.
 // 2. sequences.md: the front end paired with the tracker over each whole sequence (the paper
 //    scene with its own disparity range and match verification, PaperSceneOptions, and
 //    --config's options over them): stereo matches and temporal tracks correct (same 3-D
@@ -110,62 +113,80 @@ Table MarkdownTable(const std::vector<std::string>& titles, size_t left) {
   return table;
 }
 
+// The images a detector is scored on in one scene: frames first, first + step, ... of both
+// cameras, each with the ground truth photometrically visible in it.
+struct ScoredImages {
+  std::vector<cv::Mat> images;
+  std::vector<std::pair<int, int>> which;  // frame, camera
+  std::vector<std::vector<LineObservation>> photometric;
+};
+
+ScoredImages ImagesToScore(const MeasuredScene& scene, int first, int step) {
+  const SimulationConfig& config = scene.rendered.config();
+  const SimulatedSequence& sequence = scene.rendered.sequence();
+  // The same images without sensor noise, for the photometric visibility of the ground truth.
+  SimulationConfig noise_free = config;
+  noise_free.images.read_noise = 0.0;
+  noise_free.images.shot_noise = 0.0;
+  const SequenceRenderer noise_free_renderer(sequence, noise_free);
+  ScoredImages scored;
+  for (int k = first; k < config.frames; k += step) {
+    for (int c = 0; c < 2; ++c) {
+      scored.images.push_back(scene.rendered.Image(k, c));
+      scored.which.emplace_back(k, c);
+      const StereoFrame& frame = sequence.sequence.frames[k];
+      scored.photometric.push_back(
+          PhotometricallyVisible(c == 0 ? frame.left : frame.right, noise_free_renderer.Image(k, c), config.images));
+    }
+  }
+  return scored;
+}
+
+// One detector with `options` (and the front end's merging, length and contrast filters, snap
+// and second edges) on the scored images: against the visible ground truth and against its
+// photometrically visible part.
+void ScoreDetector(const MeasuredScene& scene, const ScoredImages& scored, const DetectionOptions& options,
+                   const TrackingOptions& tracking, DetectionScore* score, DetectionScore* photometric_score) {
+  const SimulatedSequence& sequence = scene.rendered.sequence();
+  const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
+  const LineFlowTracker flow(tracking);
+  ImagePyramid pyramid;
+  SnapWorkspace snap;
+  for (size_t i = 0; i < scored.images.size(); ++i) {
+    const auto t0 = Clock::now();
+    std::vector<ImageLine> lines = DetectLines(*detector, options, scored.images[i]);
+    if (options.snap_detections) {
+      // As the front end does (the derivatives of the flow pyramid, built there anyway, are
+      // not timed here).
+      const auto t1 = Clock::now();
+      flow.BuildPyramid(scored.images[i], &pyramid, 0);
+      score->seconds -= std::chrono::duration<double>(Clock::now() - t1).count();
+      SnapDetections(tracking, options.min_length_px, pyramid[1], &lines, &snap);
+    }
+    AddParallelEdges(options, tracking.snap_min_gradient, scored.images[i], &lines);
+    score->seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    const auto [k, c] = scored.which[i];
+    const StereoFrame& frame = sequence.sequence.frames[k];
+    const ProjectedGroundTruth projected = ProjectedGroundTruthAt(sequence, k, c);
+    ScoreDetections(projected, c == 0 ? frame.left : frame.right, lines, 40.0, score);
+    ScoreDetections(projected, scored.photometric[i], lines, 40.0, photometric_score);
+  }
+}
+
 std::string DetectorTable(const std::deque<MeasuredScene>& scenes, int first, int step, const std::string& only_detector,
                           const FrontEndOptions& front_end_options) {
-  const DetectionOptions& base = front_end_options.detection;
   Table table = MarkdownTable({"scene", "detector", "images", "GT segments >= 40 px", "recall", "precision",
                                "endpoint RMS, px", "segments per image", "ms per image",
                                "of those, photometrically visible", "recall of those"},
                               2);
   for (const MeasuredScene& scene : scenes) {
-    const SimulationConfig& config = scene.rendered.config();
-    const SimulatedSequence& sequence = scene.rendered.sequence();
-    // The same images without sensor noise, for the photometric visibility of the ground truth.
-    SimulationConfig noise_free = config;
-    noise_free.images.read_noise = 0.0;
-    noise_free.images.shot_noise = 0.0;
-    const SequenceRenderer noise_free_renderer(sequence, noise_free);
-    std::vector<cv::Mat> images;
-    std::vector<std::pair<int, int>> which;
-    std::vector<std::vector<LineObservation>> photometric;
-    for (int k = first; k < config.frames; k += step) {
-      for (int c = 0; c < 2; ++c) {
-        images.push_back(scene.rendered.Image(k, c));
-        which.emplace_back(k, c);
-        const StereoFrame& frame = sequence.sequence.frames[k];
-        photometric.push_back(PhotometricallyVisible(c == 0 ? frame.left : frame.right, noise_free_renderer.Image(k, c),
-                                                     config.images));
-      }
-    }
+    const ScoredImages scored = ImagesToScore(scene, first, step);
     for (const auto& [type, name] : LineDetectorNames()) {
       if (!only_detector.empty() && only_detector != name) continue;
-      DetectionOptions options = base;  // --config's detection options, each detector in turn
+      DetectionOptions options = front_end_options.detection;  // --config's detection options, each detector in turn
       options.detector = type;
-      const std::unique_ptr<LineDetector> detector = MakeLineDetector(options);
       DetectionScore score, photometric_score;
-      const TrackingOptions tracking = front_end_options.tracking;
-      const LineFlowTracker flow(tracking);
-      ImagePyramid pyramid;
-      SnapWorkspace snap;
-      for (size_t i = 0; i < images.size(); ++i) {
-        const auto t0 = Clock::now();
-        std::vector<ImageLine> lines = DetectLines(*detector, options, images[i]);
-        if (options.snap_detections) {
-          // As the front end does (the derivatives of the flow pyramid, built there anyway, are
-          // not timed here).
-          const auto t1 = Clock::now();
-          flow.BuildPyramid(images[i], &pyramid, 0);
-          score.seconds -= std::chrono::duration<double>(Clock::now() - t1).count();
-          SnapDetections(tracking, options.min_length_px, pyramid[1], &lines, &snap);
-        }
-        AddParallelEdges(options, tracking.snap_min_gradient, images[i], &lines);
-        score.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-        const auto [k, c] = which[i];
-        const StereoFrame& frame = sequence.sequence.frames[k];
-        const ProjectedGroundTruth projected = ProjectedGroundTruthAt(sequence, k, c);
-        ScoreDetections(projected, c == 0 ? frame.left : frame.right, lines, 40.0, &score);
-        ScoreDetections(projected, photometric[i], lines, 40.0, &photometric_score);
-      }
+      ScoreDetector(scene, scored, options, front_end_options.tracking, &score, &photometric_score);
       table.AddRow({scene.name, name, std::to_string(score.images), std::to_string(score.gt_segments),
                     StringPrintf("%.3f", score.Recall()), StringPrintf("%.3f", score.Precision()),
                     StringPrintf("%.2f", score.EndpointRms()),
@@ -176,6 +197,51 @@ std::string DetectorTable(const std::deque<MeasuredScene>& scenes, int first, in
     }
   }
   return table.Markdown();
+}
+
+// The detector of --config's options (EDLines by default) on one scene of one draw.
+struct DrawDetection {
+  std::string scene;
+  DetectionScore score, photometric;
+};
+
+DrawDetection ScoreDefaultDetector(const MeasuredScene& scene, int first, int step, const FrontEndOptions& options) {
+  DrawDetection d{scene.name, {}, {}};
+  ScoreDetector(scene, ImagesToScore(scene, first, step), options.detection, options.tracking, &d.score, &d.photometric);
+  return d;
+}
+
+// The draw table of detectors.md (--draws N > 1): `draws[d][i]` measured on scene i of draw
+// `first_seed + d`; per scene the recall pooled over the draws, the worst and best draw's, then
+// each draw's row.
+std::string DrawDetectorTable(std::uint64_t first_seed, const std::string& detector,
+                              const std::vector<std::vector<DrawDetection>>& draws) {
+  Table summary = MarkdownTable({"scene", "detector", "draws", "GT segments >= 40 px", "recall", "worst draw",
+                                 "best draw", "of those, photometrically visible", "recall of those"},
+                                2);
+  Table table = MarkdownTable({"scene", "draw (--seed)", "GT segments >= 40 px", "found", "recall",
+                               "of those, photometrically visible", "recall of those"},
+                              1);
+  for (size_t i = 0; i < draws[0].size(); ++i) {
+    DetectionScore pooled, pooled_photometric;
+    double worst = 1.0, best = 0.0;
+    for (size_t d = 0; d < draws.size(); ++d) {
+      const DrawDetection& m = draws[d][i];
+      table.AddRow({m.scene, std::to_string(first_seed + d), std::to_string(m.score.gt_segments),
+                    std::to_string(m.score.gt_found), StringPrintf("%.3f", m.score.Recall()), std::to_string(m.photometric.gt_segments),
+                    StringPrintf("%.3f", m.photometric.Recall())});
+      pooled.gt_segments += m.score.gt_segments;
+      pooled.gt_found += m.score.gt_found;
+      pooled_photometric.gt_segments += m.photometric.gt_segments;
+      pooled_photometric.gt_found += m.photometric.gt_found;
+      worst = std::min(worst, m.score.Recall());
+      best = std::max(best, m.score.Recall());
+    }
+    summary.AddRow({draws[0][i].scene, detector, std::to_string(draws.size()), std::to_string(pooled.gt_segments),
+                    StringPrintf("%.3f", pooled.Recall()), StringPrintf("%.3f", worst), StringPrintf("%.3f", best),
+                    std::to_string(pooled_photometric.gt_segments), StringPrintf("%.3f", pooled_photometric.Recall())});
+  }
+  return summary.Markdown() + "\nEach draw:\n\n" + table.Markdown();
 }
 
 double Ate(const SimulatedSequence& sequence, const Trajectory& estimate) {
@@ -406,8 +472,9 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed_text, "Simulation seed of every scene (another draw of the scenes, motions and image noise)");
   app.add_option("--detector", only_detector, "Detector table: only this detector (lsd, edlines, ...)");
   app.add_option("--draws", draws,
-                 "Sequences: also draws --seed + 1, ..., --seed + N - 1, each draw's numbers and their statistics "
-                 "in draws.md (sequences.md and detectors.md: the first draw)")
+                 "Also draws --seed + 1, ..., --seed + N - 1: each draw's numbers and their statistics in draws.md "
+                 "and, for the front end's detector, in detectors.md (sequences.md and the detector table: the first "
+                 "draw)")
       ->check(CLI::Range(1, 100000));
   const int exit_code = ParseCommandLine(app, argc, argv, "measure_frontend", [&] {
     if (app.count("--seed") > 0) seed = ParseSeedOption("--seed", seed_text);
@@ -431,12 +498,13 @@ int main(int argc, char** argv) {
       }
       return flags + contents;
     };
-    // Each file's header names the options its numbers depend on: the detector table not on the
-    // tracker or the draws, the sequences not on --step, --first, --detector or --draws.
+    // Each file's header names the options its numbers depend on: the detector tables not on the
+    // tracker, the sequences not on --step, --first or --detector (sequences.md not on --draws).
     const std::string seed_flag = seed != 1 ? " --seed " + std::to_string(seed) : std::string();
     const std::string detector_header =
-        StringPrintf("Generated by `measure_frontend --frames %d --step %d%s%s%s%s`.\n\n", frames, step,
+        StringPrintf("Generated by `measure_frontend --frames %d --step %d%s%s%s%s%s`.\n\n", frames, step,
                      first ? StringPrintf(" --first %d", first).c_str() : "", seed_flag.c_str(),
+                     draws > 1 ? StringPrintf(" --draws %d", draws).c_str() : "",
                      only_detector.empty() ? "" : (" --detector " + only_detector).c_str(),
                      config_note(false).c_str());
     const auto sequence_header = [&](bool with_draws) {
@@ -444,19 +512,29 @@ int main(int argc, char** argv) {
                           method.c_str(), seed_flag.c_str(), with_draws ? StringPrintf(" --draws %d", draws).c_str() : "",
                           config_note(true).c_str());
     };
-    const std::string detectors =
+    std::string detectors =
         skip_detectors ? "" : detector_header + DetectorTable(scenes, first, step, only_detector, options);
+    std::vector<std::vector<SequenceResult>> results(draws);
+    std::vector<std::vector<DrawDetection>> detections(draws);
+    const bool detection_draws = !skip_detectors && draws > 1;
+    for (int d = 0; d < draws && (!skip_sequences || detection_draws); ++d) {
+      // Each draw's scenes are simulated (and rendered) only while it is measured.
+      const std::deque<MeasuredScene> drawn =
+          d == 0 ? std::deque<MeasuredScene>() : Scenes(frames, only_scene, seed + d, config_options);
+      for (const MeasuredScene& scene : d == 0 ? scenes : drawn) {
+        if (detection_draws) detections[d].push_back(ScoreDefaultDetector(scene, first, step, options));
+        if (!skip_sequences) results[d].push_back(MeasureSequence(scene, choice));
+      }
+    }
+    if (detection_draws) {
+      const std::string detector = EnumName(LineDetectorNames(), options.detection.detector);
+      detectors += StringPrintf("\nThe front end's detector (%s) on draws %llu to %llu, the same frames of each:\n\n",
+                                detector.c_str(), static_cast<unsigned long long>(seed),
+                                static_cast<unsigned long long>(seed + draws - 1)) +
+                   DrawDetectorTable(seed, detector, detections);
+    }
     std::string sequences, draw_table;
     if (!skip_sequences) {
-      std::vector<std::vector<SequenceResult>> results(draws);
-      for (int d = 0; d < draws; ++d) {
-        // Each draw's scenes are simulated (and rendered) only while it is measured.
-        const std::deque<MeasuredScene> drawn =
-            d == 0 ? std::deque<MeasuredScene>() : Scenes(frames, only_scene, seed + d, config_options);
-        for (const MeasuredScene& scene : d == 0 ? scenes : drawn) {
-          results[d].push_back(MeasureSequence(scene, choice));
-        }
-      }
       sequences = sequence_header(false) + SequenceTable(scenes, results[0]);
       if (draws > 1) draw_table = sequence_header(true) + DrawTable(seed, results);
     }

@@ -108,17 +108,24 @@ class Results:
         except OSError as e:
             raise ResultsError("%s: %s" % (path, e.strerror))
 
-    def markdown_rows(self, *parts):
-        """(path, rows) of the first Markdown table in a file, each row a dict by column title."""
+    def markdown_rows(self, *parts, table=0):
+        """(path, rows) of a file's Markdown table (the first, or the table-th counting from 0),
+        each row a dict by column title."""
         path = self.path(*parts)
+        tables = [[]]
         try:
             with open(path, encoding="utf-8") as f:
-                lines = [l.strip() for l in f if l.strip().startswith("|")]
+                for l in f:
+                    if l.strip().startswith("|"):
+                        tables[-1].append(l.strip())
+                    elif tables[-1]:
+                        tables.append([])  # a table ended; the next has its own columns
         except OSError as e:
             raise ResultsError("%s: %s" % (path, e.strerror))
+        lines = tables[table] if table < len(tables) else []
         cells = [[c.strip() for c in l.strip("|").split("|")] for l in lines]
         if len(cells) < 3:
-            raise ResultsError("%s: no Markdown table" % path)
+            raise ResultsError("%s: no Markdown table%s" % (path, " %d (counting from 1)" % (table + 1) if table else ""))
         return path, [dict(zip(cells[0], row)) for row in cells[2:]]
 
 
@@ -252,6 +259,23 @@ def detector_recall(r):
             raise ResultsError("%s: no recall of edlines on '%s'" % (path, scene))
         found.append("%.1f %% (%s)" % (100 * float(row[0]["recall"]), label))
     return "%s and %s" % (", ".join(found[:-1]), found[-1])
+
+
+def detector_recall_draws(r):
+    """The same recall pooled over the draws of detectors.md's draw table (measure_frontend --draws), with the
+    worst draw's."""
+    path, rows = r.markdown_rows("frontend", "detectors.md", table=1)
+    found = []
+    for scene, label in DETECTOR_SCENES:
+        row = [x for x in rows if x.get("scene") == scene and x.get("detector") == "edlines"]
+        if not row or "worst draw" not in row[0]:
+            raise ResultsError("%s: no recall of edlines over the draws on '%s'" % (path, scene))
+        found.append("%.1f %% (worst draw %.1f %%; %s)" % (100 * float(row[0]["recall"]),
+                                                         100 * float(row[0]["worst draw"]), label))
+    draws = {x["draws"] for x in rows}
+    if len(draws) != 1:
+        raise ResultsError("%s: scenes over different numbers of draws" % path)
+    return "over %s draws of each scene: %s and %s" % (draws.pop(), ", ".join(found[:-1]), found[-1])
 
 
 # The rows of the draws table (measure_frontend --draws): (folder under results/, scene, label).
@@ -468,6 +492,7 @@ GENERATORS = {
     "long_runs_table": long_runs_table,
     "datasets_sentence": datasets_sentence,
     "detector_recall": detector_recall,
+    "detector_recall_draws": detector_recall_draws,
     "frontend_draws_table": frontend_draws_table,
     "feature_count_table": feature_count_table,
     "faithful_fixed_r": faithful_fixed_r,

@@ -59,6 +59,21 @@ class UpdateReadme(unittest.TestCase):
         with self.assertRaises(update_readme.ResultsError):
             update_readme.fill(self.readme, update_readme.Results(os.path.join(ROOT, "no_such_results")))
 
+    def test_markdown_rows_are_one_tables_only(self):
+        import tempfile
+        with tempfile.TemporaryDirectory() as root:
+            os.makedirs(os.path.join(root, "frontend"))
+            with open(os.path.join(root, "frontend", "t.md"), "w", encoding="utf-8") as f:
+                f.write("Generated.\n\n| scene | recall |\n|---|---:|\n| room | 0.9 |\n\nMore:\n\n"
+                        "| scene | draws |\n|---|---:|\n| room | 10 |\n")
+            results = update_readme.Results(root)
+            _, rows = results.markdown_rows("frontend", "t.md")
+            _, second = results.markdown_rows("frontend", "t.md", table=1)
+            with self.assertRaises(update_readme.ResultsError):
+                results.markdown_rows("frontend", "t.md", table=2)
+        self.assertEqual(rows, [{"scene": "room", "recall": "0.9"}])
+        self.assertEqual(second, [{"scene": "room", "draws": "10"}])
+
     def test_numbers_are_written_with_three_significant_digits(self):
         self.assertEqual(update_readme.sig(0.15312), "0.153")
         self.assertEqual(update_readme.sig(3.84e-6), "3.8e-6")
