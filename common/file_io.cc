@@ -33,26 +33,19 @@ fs::path ResolvedPath(const fs::path& path) {
 constexpr int kTemporarySlots = 64;
 std::atomic<const char*> g_temporary_files[kTemporarySlots];
 
-class TemporaryFileSlot {
- public:
-  explicit TemporaryFileSlot(const std::string& path) {
-    for (int i = 0; i < kTemporarySlots; ++i) {
-      const char* expected = nullptr;
-      if (g_temporary_files[i].compare_exchange_strong(expected, path.c_str())) {
-        slot_ = i;
-        return;
-      }
-    }
+// The slot claimed for `path` (whose characters must outlive the claim), or -1 when all are in
+// use (the file is then not removed on a signal).
+int ClaimTemporarySlot(const std::string& path) {
+  for (int i = 0; i < kTemporarySlots; ++i) {
+    const char* expected = nullptr;
+    if (g_temporary_files[i].compare_exchange_strong(expected, path.c_str())) return i;
   }
-  ~TemporaryFileSlot() {
-    if (slot_ >= 0) g_temporary_files[slot_].store(nullptr);
-  }
-  TemporaryFileSlot(const TemporaryFileSlot&) = delete;
-  TemporaryFileSlot& operator=(const TemporaryFileSlot&) = delete;
+  return -1;
+}
 
- private:
-  int slot_ = -1;
-};
+void ReleaseTemporarySlot(int slot) {
+  if (slot >= 0) g_temporary_files[slot].store(nullptr);
+}
 
 extern "C" void RemoveTemporaryFilesAndDie(int signal_number) {
   for (auto& slot : g_temporary_files) {
@@ -215,34 +208,50 @@ void ReplaceDirectory(const std::string& staging, const std::string& dir, const 
   if (replaces) fs::remove_all(old, error);
 }
 
-void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
+AtomicFileWriter::AtomicFileWriter(const std::string& path) : path_(path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   if (fs::is_directory(status)) throw std::runtime_error(path + ": is a directory, expected a file");
   if (fs::exists(status) && !fs::is_regular_file(status)) {
     // A device or a FIFO: renaming over it would replace it with a regular file.
-    std::ofstream out(path, std::ios::binary);
-    out << contents;
-    out.flush();
-    if (!out) throw std::runtime_error(path + ": write failed");
+    out_.open(path, std::ios::binary);
+    if (!out_) throw std::runtime_error(path + ": cannot write file (" + ErrnoText() + ")");
     return;
   }
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const TemporaryFileSlot slot(tmp);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot write file (" + ErrnoText() + ")");
-    out << contents;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(path + ": write failed");
-    }
+  tmp_ = path + ".tmp." + std::to_string(::getpid());
+  slot_ = ClaimTemporarySlot(tmp_);
+  out_.open(tmp_, std::ios::binary | std::ios::trunc);
+  if (!out_) {
+    const std::string why = ErrnoText();
+    ReleaseTemporarySlot(slot_);
+    throw std::runtime_error(path + ": cannot write file (" + why + ")");
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot move the written file into place");
-  }
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (committed_ || tmp_.empty()) return;
+  out_.close();
+  std::remove(tmp_.c_str());
+  ReleaseTemporarySlot(slot_);
+}
+
+void AtomicFileWriter::Commit() {
+  if (committed_) return;
+  out_.flush();
+  if (!out_) throw std::runtime_error(path_ + ": write failed");
+  out_.close();
+  committed_ = true;
+  if (tmp_.empty()) return;
+  const bool moved = std::rename(tmp_.c_str(), path_.c_str()) == 0;
+  if (!moved) std::remove(tmp_.c_str());
+  ReleaseTemporarySlot(slot_);
+  if (!moved) throw std::runtime_error(path_ + ": cannot move the written file into place");
+}
+
+void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
+  AtomicFileWriter file(path);
+  file.stream() << contents;
+  file.Commit();
 }
 
 void InstallTemporaryFileCleanup() {

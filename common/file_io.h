@@ -68,8 +68,30 @@ void CheckReplaceableDirectory(const std::string& what, const std::string& dir, 
 void RefusePathsInReplacedDirectory(const std::string& what, const std::string& dir,
                                     const std::vector<std::pair<std::string, std::string>>& paths,
                                     const std::string& kept = "");
-// Writes `contents` to `path`: a regular (or absent) file atomically via "<path>.tmp.<pid>" and
-// rename, so readers never see a half-written file; an existing device or FIFO directly.
+// An output file written as a stream and put in place whole: a regular (or absent) file is
+// written to "<path>.tmp.<pid>" and renamed to `path` by Commit(), so readers never see a
+// half-written file and a run that fails leaves none (the destructor removes an uncommitted
+// temporary file, and so does InstallTemporaryFileCleanup's handler on SIGINT and SIGTERM); an
+// existing device or FIFO is written directly. For outputs that grow with the run (logs,
+// observations), which are then never held in memory. Throws std::runtime_error naming `path`.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(const std::string& path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  std::ostream& stream() { return out_; }
+  // Flushes and renames into place; throws if a write failed (the temporary file is removed).
+  void Commit();
+
+ private:
+  std::string path_, tmp_;  // tmp_ empty: a device or FIFO, written directly
+  std::ofstream out_;
+  int slot_ = -1;  // its slot for the signal handler
+  bool committed_ = false;
+};
+
+// Writes `contents` to `path` at once (AtomicFileWriter).
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);
 
 // On SIGINT and SIGTERM, removes the temporary files WriteTextFileAtomically has in flight, then

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/csv.h"
 #include "common/json_changes.h"
 
 namespace slt {
@@ -157,6 +158,37 @@ TEST(CheckWritable, RefusesUnwritablePathsAndLeavesNoFile) {
   // A FIFO is not opened (with no reader that would block; with one it would end its input).
   ASSERT_EQ(::mkfifo((dir + "/pipe").c_str(), 0600), 0);
   EXPECT_EQ(ErrorOf([&] { CheckWritable("--log", dir + "/pipe"); }), "");
+}
+
+// A streamed output appears whole at Commit(), replacing the old file only then; a writer
+// destroyed without Commit() leaves the old file and no temporary one.
+TEST(AtomicFileWriter, PutsTheFileInPlaceWholeAtCommitOrNotAtAll) {
+  const std::string dir = TempDir("atomic");
+  const std::string out = dir + "/log.csv", tmp = out + ".tmp." + std::to_string(::getpid());
+  WriteTextFileAtomically(out, "old\n");
+  {
+    AtomicFileWriter file(out);
+    file.stream() << "a,b\n";
+    file.stream().flush();
+    EXPECT_TRUE(fs::exists(tmp));
+    EXPECT_EQ(ReadTextFile(out), "old\n");
+    file.stream() << "1,2\n";
+    file.Commit();
+    EXPECT_FALSE(fs::exists(tmp));
+    EXPECT_EQ(ReadTextFile(out), "a,b\n1,2\n");
+  }
+  EXPECT_EQ(ReadTextFile(out), "a,b\n1,2\n");
+  {
+    AtomicFileWriter abandoned(out);
+    abandoned.stream() << "half";
+    abandoned.stream().flush();
+    EXPECT_TRUE(fs::exists(tmp));
+  }
+  EXPECT_FALSE(fs::exists(tmp));
+  EXPECT_EQ(ReadTextFile(out), "a,b\n1,2\n");
+  EXPECT_EQ(ErrorOf([&] { AtomicFileWriter file(dir); }), dir + ": is a directory, expected a file");
+  EXPECT_NE(ErrorOf([&] { AtomicFileWriter file(dir + "/no_such_dir/x.csv"); }).find(dir + "/no_such_dir/x.csv: cannot write file ("),
+            std::string::npos);
 }
 
 // Renaming a temporary file over a FIFO (or /dev/null) would replace it with a regular file.

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -495,11 +496,9 @@ nlohmann::json StereoLinesToJson(const StereoSequence& sequence) {
   return {{"format", kFormatName}, {"rig", StereoRigToJson(sequence.rig)}, {"frames", std::move(frames)}};
 }
 
-StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& rig)
-    : path_(path), partial_path_(path + ".partial") {
+StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& rig) : path_(path) {
   CheckRig(rig, path, "rig");
-  out_.open(partial_path_, std::ios::binary | std::ios::trunc);
-  if (!out_) throw std::runtime_error(partial_path_ + ": cannot write file");
+  file_ = std::make_unique<AtomicFileWriter>(path);
   // One rig field per line and one observation per line: readable in a pager, diffable, and a
   // fraction of the size of an indented dump (which puts every number on its own line).
   std::string text = std::string("{\n  \"format\": \"") + kFormatName + "\",\n  \"rig\": {";
@@ -509,17 +508,13 @@ StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& r
     text += it.key() + "\": " + it.value().dump();
   }
   text += "\n  },\n  \"frames\": [";
-  out_ << text;
+  file_->stream() << text;
 }
 
-StereoLinesWriter::~StereoLinesWriter() {
-  if (!closed_) {
-    out_.close();
-    std::remove(partial_path_.c_str());
-  }
-}
+StereoLinesWriter::~StereoLinesWriter() = default;
 
 void StereoLinesWriter::Append(const StereoFrame& frame) {
+  if (closed_) throw std::logic_error(path_ + ": frame appended after Close()");
   CheckFrame(frame, frames_, frames_ > 0 ? &previous_time_ : nullptr, path_);
   buffer_.clear();
   buffer_ += frames_ == 0 ? "\n    {\"time\": " : ",\n    {\"time\": ";
@@ -529,22 +524,16 @@ void StereoLinesWriter::Append(const StereoFrame& frame) {
   buffer_ += ", \"right\": ";
   AppendImage(frame.right, &buffer_);
   buffer_ += "}";
-  out_ << buffer_;
-  if (!out_) throw std::runtime_error(partial_path_ + ": write failed");
+  file_->stream() << buffer_;
+  if (!file_->stream()) throw std::runtime_error(path_ + ": write failed");
   previous_time_ = frame.time;
   ++frames_;
 }
 
 void StereoLinesWriter::Close() {
   if (closed_) return;
-  out_ << (frames_ == 0 ? "]\n}\n" : "\n  ]\n}\n");
-  out_.flush();
-  if (!out_) throw std::runtime_error(partial_path_ + ": write failed");
-  out_.close();
-  if (std::rename(partial_path_.c_str(), path_.c_str()) != 0) {
-    std::remove(partial_path_.c_str());
-    throw std::runtime_error(path_ + ": cannot move the written file into place");
-  }
+  file_->stream() << (frames_ == 0 ? "]\n}\n" : "\n  ]\n}\n");
+  file_->Commit();
   closed_ = true;
 }
 

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "common/file_io.h"
 #include "dataset/stereo_sequence.h"
 
 namespace slt {
@@ -27,9 +28,9 @@ StereoSequence ReadStereoLines(const std::string& path);
 StereoSequence StereoLinesFromJson(const nlohmann::json& document, const std::string& where);
 nlohmann::json StereoLinesToJson(const StereoSequence& sequence);
 // Writes a stereo-lines/1 file one frame at a time, so that a front end can stream any number
-// of frames with flat memory. The text is that of WriteStereoLines. The file is written as
-// PATH.partial and renamed to PATH by Close(); a writer destroyed before Close() removes it
-// (a program writes all its outputs or none). Each frame is checked as CheckStereoSequence
+// of frames with flat memory. The text is that of WriteStereoLines. The file is written through
+// an AtomicFileWriter (common/file_io.h) and put in place by Close(); a writer destroyed before
+// Close() removes it (a program writes all its outputs or none). Each frame is checked as CheckStereoSequence
 // does; errors name PATH and the frame's key path.
 class StereoLinesWriter {
  public:
@@ -42,8 +43,8 @@ class StereoLinesWriter {
   size_t frames() const { return frames_; }
 
  private:
-  std::string path_, partial_path_;
-  std::ofstream out_;
+  std::string path_;
+  std::unique_ptr<AtomicFileWriter> file_;
   std::string buffer_;
   size_t frames_ = 0;
   double previous_time_ = 0.0;

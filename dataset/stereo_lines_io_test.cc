@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "common/file_io.h"
+#include "common/csv.h"
 #include "common/json_changes.h"
 #include "common/json_reader.h"
 
@@ -108,13 +109,10 @@ TEST(StereoLinesIo, StreamedWriterWritesTheSameFileOrNone) {
     StereoLinesWriter writer(streamed, written.rig);
     for (const StereoFrame& frame : written.frames) writer.Append(frame);
     EXPECT_FALSE(std::ifstream(streamed).good()) << "visible before Close()";
+    EXPECT_TRUE(std::ifstream(streamed + ".tmp." + std::to_string(::getpid())).good()) << "written as it goes";
     writer.Close();
   }
-  std::ifstream a(whole), b(streamed);
-  std::stringstream ta, tb;
-  ta << a.rdbuf();
-  tb << b.rdbuf();
-  EXPECT_EQ(ta.str(), tb.str());
+  EXPECT_EQ(ReadTextFile(whole), ReadTextFile(streamed));
   // Abandoned (an exception in the producer): neither the file nor its partial copy remains.
   const std::string abandoned = TempPath("abandoned.json");
   {
@@ -125,7 +123,7 @@ TEST(StereoLinesIo, StreamedWriterWritesTheSameFileOrNone) {
     EXPECT_NE(ConfigErrorOf([&] { writer.Append(late); }).find("frames[1].time"), std::string::npos);
   }
   EXPECT_FALSE(std::ifstream(abandoned).good());
-  EXPECT_FALSE(std::ifstream(abandoned + ".partial").good());
+  EXPECT_FALSE(std::ifstream(abandoned + ".tmp." + std::to_string(::getpid())).good());
   std::remove(whole.c_str());
   std::remove(streamed.c_str());
 }

@@ -136,23 +136,32 @@ Trajectory ReadTumTrajectory(const std::string& path) {
   return trajectory;
 }
 
-void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory) {
-  std::string out = "# time tx ty tz qx qy qz qw (world_from_cam of the left camera)\n";
-  for (size_t k = 0; k < trajectory.size(); ++k) {
-    const TimedPose& pose = trajectory[k];
-    CheckFinite(path, k, pose);
-    if (k > 0 && pose.time < trajectory[k - 1].time) FailPose(path, k, pose, "time goes backwards");
-    Eigen::Quaterniond q = pose.world_from_cam.Quaternion();
-    // q and -q are the same rotation; one sign makes the files comparable line by line.
-    if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-    const Eigen::Vector3d& t = pose.world_from_cam.translation;
-    for (double value : {pose.time, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) {
-      AppendNumber(value, &out);
-      out += ' ';
-    }
-    out.back() = '\n';
+TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : path_(path), file_(path) {
+  file_.stream() << "# time tx ty tz qx qy qz qw (world_from_cam of the left camera)\n";
+}
+
+void TumTrajectoryWriter::Append(const TimedPose& pose) {
+  CheckFinite(path_, poses_, pose);
+  if (poses_ > 0 && pose.time < previous_time_) FailPose(path_, poses_, pose, "time goes backwards");
+  Eigen::Quaterniond q = pose.world_from_cam.Quaternion();
+  // q and -q are the same rotation; one sign makes the files comparable line by line.
+  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+  const Eigen::Vector3d& t = pose.world_from_cam.translation;
+  line_.clear();
+  for (double value : {pose.time, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) {
+    AppendNumber(value, &line_);
+    line_ += ' ';
   }
-  WriteTextFileAtomically(path, out);
+  line_.back() = '\n';
+  file_.stream() << line_;
+  previous_time_ = pose.time;
+  ++poses_;
+}
+
+void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory) {
+  TumTrajectoryWriter writer(path);
+  for (const TimedPose& pose : trajectory) writer.Append(pose);
+  writer.Close();
 }
 
 Trajectory ReadKittiTrajectory(const std::string& path, double frame_period) {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "common/file_io.h"
 #include "geometry/rigid3.h"
 
 namespace slt {
@@ -44,6 +45,21 @@ Trajectory ReadTumTrajectory(const std::string& path);
 // value is not finite, a translation is beyond kMaxTrajectoryCoordinate or times decrease (the
 // reader would reject the file).
 void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory);
+// The same file written pose by pose (memory flat over any length), put in place by Close(); a
+// writer destroyed before Close() leaves no file. Append throws as WriteTumTrajectory does.
+class TumTrajectoryWriter {
+ public:
+  explicit TumTrajectoryWriter(const std::string& path);
+  void Append(const TimedPose& pose);
+  void Close() { file_.Commit(); }
+
+ private:
+  std::string path_;
+  AtomicFileWriter file_;
+  std::string line_;
+  size_t poses_ = 0;
+  double previous_time_ = 0.0;
+};
 // KITTI has no times: frame k gets time k * frame_period (seconds; std::invalid_argument unless
 // finite and > 0).
 Trajectory ReadKittiTrajectory(const std::string& path, double frame_period = 0.1);

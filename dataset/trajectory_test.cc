@@ -6,8 +6,10 @@
 #include <fstream>
 #include <functional>
 #include <random>
+#include <sstream>
 #include <unistd.h>
 
+#include "common/csv.h"
 #include "common/json_changes.h"
 #include "common/json_reader.h"
 #include "geometry/se3.h"
@@ -61,6 +63,31 @@ TEST(Trajectory, TumRoundTripIsExact) {
   WriteTumTrajectory(path, written);
   ExpectSamePoses(ReadTumTrajectory(path), written, true);
   std::remove(path.c_str());
+}
+
+// Pose by pose, the same file as WriteTumTrajectory, in place only after Close(); abandoned (an
+// error in the producer), no file at all.
+TEST(Trajectory, TumWriterStreamsTheSameFileOrNone) {
+  const Trajectory written = RandomTrajectory(50, 2);
+  const std::string whole = TempPath("whole.tum"), streamed = TempPath("streamed.tum");
+  WriteTumTrajectory(whole, written);
+  {
+    TumTrajectoryWriter writer(streamed);
+    for (const TimedPose& pose : written) writer.Append(pose);
+    EXPECT_FALSE(std::ifstream(streamed).good()) << "visible before Close()";
+    writer.Close();
+  }
+  EXPECT_EQ(ReadTextFile(whole), ReadTextFile(streamed));
+  const std::string abandoned = TempPath("abandoned.tum");
+  {
+    TumTrajectoryWriter writer(abandoned);
+    writer.Append(written[1]);
+    EXPECT_EQ(ErrorOf([&] { writer.Append(written[0]); }).find(abandoned + ": pose 1 (time "), 0u);
+  }
+  EXPECT_FALSE(std::ifstream(abandoned).good());
+  EXPECT_FALSE(std::ifstream(abandoned + ".tmp." + std::to_string(::getpid())).good());
+  std::remove(whole.c_str());
+  std::remove(streamed.c_str());
 }
 
 TEST(Trajectory, KittiRoundTripIsExactAndTimesFollowThePeriod) {

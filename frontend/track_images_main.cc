@@ -6,9 +6,11 @@
 //
 // Reads the stereo pairs one at a time (frontend/image_sequence.h), runs the front end
 // (frontend/stereo_frontend.h) with detection when the tracker asks for new lines, and the
-// tracker on its output; memory stays flat over any length. Writes the trajectory (TUM,
-// camera-to-world), optionally the observations (stereo-lines/1, replayable with `track`), a
-// per-frame log and the pictures of --viz (frontend/frontend_viz.h). All outputs or none.
+// tracker on its output. Writes the trajectory (TUM, camera-to-world), optionally the
+// observations (stereo-lines/1, replayable with `track`), a per-frame log and the pictures of
+// --viz (frontend/frontend_viz.h). All outputs or none: the trajectory, the observations and
+// the log are streamed to temporary files (AtomicFileWriter) and put in place at the end, so
+// memory stays flat over any length (--viz keeps one number per frame for its Fig. 9 curve).
 #include <CLI/CLI.hpp>
 #include <array>
 #include <chrono>
@@ -101,12 +103,17 @@ int main(int argc, char** argv) {
 
     StereoFrontEnd front_end(options, rig);
     ImageTracker image_tracker(front_end, *tracker, rig);
-    Trajectory trajectory;
-    std::ostringstream log;
-    log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms";
-    // The lost lines by reason (LineLoss, line_tracking.h), after the columns above.
-    for (int r = 1; r < kNumLineLosses; ++r) log << ",lost_" << LineLossName(static_cast<LineLoss>(r));
-    log << "\n";
+    TumTrajectoryWriter trajectory(output);
+    // --log is streamed (memory stays flat over any length) and put in place at the end.
+    std::optional<AtomicFileWriter> log_file;
+    if (!log_path.empty()) {
+      log_file.emplace(log_path);
+      std::ostream& log = log_file->stream();
+      log << "frame,time,status,lines,detected,added,lost,predicted,rematched,detect_ms,describe_ms,match_ms,track_ms,filter_ms,tracker_ms,read_ms";
+      // The lost lines by reason (LineLoss, line_tracking.h), after the columns above.
+      for (int r = 1; r < kNumLineLosses; ++r) log << ",lost_" << LineLossName(static_cast<LineLoss>(r));
+      log << "\n";
+    }
     std::array<long, kNumLineLosses> lost_by{};
     RunCounts counts;
     ProgressBar progress(progress_forced || StderrIsTerminal());
@@ -131,20 +138,20 @@ int main(int argc, char** argv) {
         steady += stats.times;
       }
       counts.Add(step.output);
-      trajectory.push_back({images.time, step.output.cam_from_world.Inverse()});
+      trajectory.Append({images.time, step.output.cam_from_world.Inverse()});
       if (writer) writer->Append(*step.frame);
       if (pictures) pictures->AddFrame(k - first, images.left, images.right, front_end, *step.frame, step.output);
-      const FrontEndStageTimes& t = stats.times;
-      log << k << "," << images.time << "," << TrackingStatusName(step.output.status) << "," << stats.live << ","
-          << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost() << "," << stats.predicted << ","
-          << stats.rematched << "," << 1e3 * t.detect << ","
-          << 1e3 * t.describe << "," << 1e3 * t.match << "," << 1e3 * t.track << "," << 1e3 * t.filter << ","
-          << 1e3 * step.tracker_seconds << "," << 1e3 * read;
-      for (int r = 1; r < kNumLineLosses; ++r) {
-        log << "," << stats.lost_by[r];
-        lost_by[r] += stats.lost_by[r];
+      for (int r = 1; r < kNumLineLosses; ++r) lost_by[r] += stats.lost_by[r];
+      if (log_file) {
+        const FrontEndStageTimes& t = stats.times;
+        std::ostream& log = log_file->stream();
+        log << k << "," << images.time << "," << TrackingStatusName(step.output.status) << "," << stats.live << ","
+            << (stats.detected ? 1 : 0) << "," << stats.added << "," << stats.lost() << "," << stats.predicted << ","
+            << stats.rematched << "," << 1e3 * t.detect << "," << 1e3 * t.describe << "," << 1e3 * t.match << ","
+            << 1e3 * t.track << "," << 1e3 * t.filter << "," << 1e3 * step.tracker_seconds << "," << 1e3 * read;
+        for (int r = 1; r < kNumLineLosses; ++r) log << "," << stats.lost_by[r];
+        log << "\n";
       }
-      log << "\n";
       if (progress.shown()) {
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const int done = k - first + 1;
@@ -152,9 +159,9 @@ int main(int argc, char** argv) {
                         StringPrintf(" %.1f fps  %d lines ", done / std::max(elapsed, 1e-9), stats.live));
       }
     }
-    WriteTumTrajectory(output, trajectory);
+    trajectory.Close();
     if (writer) writer->Close();
-    if (!log_path.empty()) WriteTextFileAtomically(log_path, log.str());
+    if (log_file) log_file->Commit();
     if (pictures) pictures->Finish();
 
     const int frames = end - first;
