@@ -94,7 +94,7 @@ class AtomicFileWriter {
 // Writes `contents` to `path` at once (AtomicFileWriter).
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);
 
-// On SIGINT and SIGTERM, removes the temporary files WriteTextFileAtomically has in flight, then
+// On SIGINT and SIGTERM, removes the temporary files AtomicFileWriter has in flight, then
 // dies of the signal as it would have without the handler. Idempotent.
 void InstallTemporaryFileCleanup();
 

@@ -30,8 +30,8 @@ nlohmann::json StereoLinesToJson(const StereoSequence& sequence);
 // Writes a stereo-lines/1 file one frame at a time, so that a front end can stream any number
 // of frames with flat memory. The text is that of WriteStereoLines. The file is written through
 // an AtomicFileWriter (common/file_io.h) and put in place by Close(); a writer destroyed before
-// Close() removes it (a program writes all its outputs or none). Each frame is checked as CheckStereoSequence
-// does; errors name PATH and the frame's key path.
+// Close() removes it (a program writes all its outputs or none). Each frame is checked as
+// CheckStereoSequence does; errors name PATH and the frame's key path.
 class StereoLinesWriter {
  public:
   StereoLinesWriter(const std::string& path, const StereoRig& rig);
