@@ -81,6 +81,7 @@ class AtomicFileWriter {
   AtomicFileWriter(const AtomicFileWriter&) = delete;
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
   std::ostream& stream() { return out_; }
+  const std::string& path() const { return path_; }
   // Flushes and renames into place; throws if a write failed (the temporary file is removed).
   void Commit();
 

@@ -496,7 +496,7 @@ nlohmann::json StereoLinesToJson(const StereoSequence& sequence) {
   return {{"format", kFormatName}, {"rig", StereoRigToJson(sequence.rig)}, {"frames", std::move(frames)}};
 }
 
-StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& rig) : path_(path) {
+StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& rig) {
   CheckRig(rig, path, "rig");
   file_ = std::make_unique<AtomicFileWriter>(path);
   // One rig field per line and one observation per line: readable in a pager, diffable, and a
@@ -514,8 +514,8 @@ StereoLinesWriter::StereoLinesWriter(const std::string& path, const StereoRig& r
 StereoLinesWriter::~StereoLinesWriter() = default;
 
 void StereoLinesWriter::Append(const StereoFrame& frame) {
-  if (closed_) throw std::logic_error(path_ + ": frame appended after Close()");
-  CheckFrame(frame, frames_, frames_ > 0 ? &previous_time_ : nullptr, path_);
+  if (closed_) throw std::logic_error(file_->path() + ": frame appended after Close()");
+  CheckFrame(frame, frames_, frames_ > 0 ? &previous_time_ : nullptr, file_->path());
   buffer_.clear();
   buffer_ += frames_ == 0 ? "\n    {\"time\": " : ",\n    {\"time\": ";
   AppendNumber(frame.time, &buffer_);
@@ -525,7 +525,7 @@ void StereoLinesWriter::Append(const StereoFrame& frame) {
   AppendImage(frame.right, &buffer_);
   buffer_ += "}";
   file_->stream() << buffer_;
-  if (!file_->stream()) throw std::runtime_error(path_ + ": write failed");
+  if (!file_->stream()) throw std::runtime_error(file_->path() + ": write failed");
   previous_time_ = frame.time;
   ++frames_;
 }

@@ -43,7 +43,6 @@ class StereoLinesWriter {
   size_t frames() const { return frames_; }
 
  private:
-  std::string path_;
   std::unique_ptr<AtomicFileWriter> file_;
   std::string buffer_;
   size_t frames_ = 0;

@@ -136,13 +136,13 @@ Trajectory ReadTumTrajectory(const std::string& path) {
   return trajectory;
 }
 
-TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : path_(path), file_(path) {
+TumTrajectoryWriter::TumTrajectoryWriter(const std::string& path) : file_(path) {
   file_.stream() << "# time tx ty tz qx qy qz qw (world_from_cam of the left camera)\n";
 }
 
 void TumTrajectoryWriter::Append(const TimedPose& pose) {
-  CheckFinite(path_, poses_, pose);
-  if (poses_ > 0 && pose.time < previous_time_) FailPose(path_, poses_, pose, "time goes backwards");
+  CheckFinite(file_.path(), poses_, pose);
+  if (poses_ > 0 && pose.time < previous_time_) FailPose(file_.path(), poses_, pose, "time goes backwards");
   Eigen::Quaterniond q = pose.world_from_cam.Quaternion();
   // q and -q are the same rotation; one sign makes the files comparable line by line.
   if (q.w() < 0.0) q.coeffs() = -q.coeffs();

@@ -54,7 +54,6 @@ class TumTrajectoryWriter {
   void Close() { file_.Commit(); }
 
  private:
-  std::string path_;
   AtomicFileWriter file_;
   std::string line_;
   size_t poses_ = 0;

@@ -173,8 +173,16 @@ void ScoreDetector(const MeasuredScene& scene, const ScoredImages& scored, const
   }
 }
 
+// The detector of --config's options (EDLines by default) on one scene of one draw.
+struct DrawDetection {
+  std::string scene;
+  DetectionScore score, photometric;
+};
+
+// The detector table; the front end's own detector's scores per scene also into
+// `front_end_detector` (empty when --detector left it out).
 std::string DetectorTable(const std::deque<MeasuredScene>& scenes, int first, int step, const std::string& only_detector,
-                          const FrontEndOptions& front_end_options) {
+                          const FrontEndOptions& front_end_options, std::vector<DrawDetection>* front_end_detector) {
   Table table = MarkdownTable({"scene", "detector", "images", "GT segments >= 40 px", "recall", "precision",
                                "endpoint RMS, px", "segments per image", "ms per image",
                                "of those, photometrically visible", "recall of those"},
@@ -194,16 +202,11 @@ std::string DetectorTable(const std::deque<MeasuredScene>& scenes, int first, in
                     StringPrintf("%.1f", 1e3 * score.seconds / score.images),
                     std::to_string(photometric_score.gt_segments), StringPrintf("%.3f", photometric_score.Recall())});
       std::fprintf(stderr, "measure_frontend: %s, %s: recall %.3f\n", scene.name.c_str(), name, score.Recall());
+      if (type == front_end_options.detection.detector) front_end_detector->push_back({scene.name, score, photometric_score});
     }
   }
   return table.Markdown();
 }
-
-// The detector of --config's options (EDLines by default) on one scene of one draw.
-struct DrawDetection {
-  std::string scene;
-  DetectionScore score, photometric;
-};
 
 DrawDetection ScoreDefaultDetector(const MeasuredScene& scene, int first, int step, const FrontEndOptions& options) {
   DrawDetection d{scene.name, {}, {}};
@@ -512,17 +515,21 @@ int main(int argc, char** argv) {
                           method.c_str(), seed_flag.c_str(), with_draws ? StringPrintf(" --draws %d", draws).c_str() : "",
                           config_note(true).c_str());
     };
-    std::string detectors =
-        skip_detectors ? "" : detector_header + DetectorTable(scenes, first, step, only_detector, options);
     std::vector<std::vector<SequenceResult>> results(draws);
     std::vector<std::vector<DrawDetection>> detections(draws);
+    std::string detectors =
+        skip_detectors ? "" : detector_header + DetectorTable(scenes, first, step, only_detector, options, &detections[0]);
     const bool detection_draws = !skip_detectors && draws > 1;
+    // The first draw's scores are the detector table's, unless --detector left the front end's out.
+    const bool score_first_draw = detections[0].empty();
     for (int d = 0; d < draws && (!skip_sequences || detection_draws); ++d) {
       // Each draw's scenes are simulated (and rendered) only while it is measured.
       const std::deque<MeasuredScene> drawn =
           d == 0 ? std::deque<MeasuredScene>() : Scenes(frames, only_scene, seed + d, config_options);
       for (const MeasuredScene& scene : d == 0 ? scenes : drawn) {
-        if (detection_draws) detections[d].push_back(ScoreDefaultDetector(scene, first, step, options));
+        if (detection_draws && (d > 0 || score_first_draw)) {
+          detections[d].push_back(ScoreDefaultDetector(scene, first, step, options));
+        }
         if (!skip_sequences) results[d].push_back(MeasureSequence(scene, choice));
       }
     }

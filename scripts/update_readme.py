@@ -249,30 +249,32 @@ DETECTOR_SCENES = (("room 752x480 (loop)", "room, 752 × 480"), ("corridor 640x4
                    ("paper scene 640x480 (paper motion)", "paper scene"))
 
 
-def detector_recall(r):
-    """The front end's default detector (EDLines): recall of the visible ground-truth segments per rendered scene."""
-    path, rows = r.markdown_rows("frontend", "detectors.md")
+def edlines_rows(r, table, column):
+    """(path, [(row, label)]) of EDLines on each scene the README names, from a table of detectors.md."""
+    path, rows = r.markdown_rows("frontend", "detectors.md", table=table)
     found = []
     for scene, label in DETECTOR_SCENES:
         row = [x for x in rows if x.get("scene") == scene and x.get("detector") == "edlines"]
-        if not row or "recall" not in row[0]:
-            raise ResultsError("%s: no recall of edlines on '%s'" % (path, scene))
-        found.append("%.1f %% (%s)" % (100 * float(row[0]["recall"]), label))
+        if not row or column not in row[0]:
+            raise ResultsError("%s: no %s of edlines on '%s'" % (path, column, scene))
+        found.append((row[0], label))
+    return path, found
+
+
+def detector_recall(r):
+    """The front end's default detector (EDLines): recall of the visible ground-truth segments per rendered scene."""
+    _, rows = edlines_rows(r, 0, "recall")
+    found = ["%.1f %% (%s)" % (100 * float(row["recall"]), label) for row, label in rows]
     return "%s and %s" % (", ".join(found[:-1]), found[-1])
 
 
 def detector_recall_draws(r):
     """The same recall pooled over the draws of detectors.md's draw table (measure_frontend --draws), with the
     worst draw's."""
-    path, rows = r.markdown_rows("frontend", "detectors.md", table=1)
-    found = []
-    for scene, label in DETECTOR_SCENES:
-        row = [x for x in rows if x.get("scene") == scene and x.get("detector") == "edlines"]
-        if not row or "worst draw" not in row[0]:
-            raise ResultsError("%s: no recall of edlines over the draws on '%s'" % (path, scene))
-        found.append("%.1f %% (worst draw %.1f %%; %s)" % (100 * float(row[0]["recall"]),
-                                                         100 * float(row[0]["worst draw"]), label))
-    draws = {x["draws"] for x in rows}
+    path, rows = edlines_rows(r, 1, "worst draw")
+    found = ["%.1f %% (worst draw %.1f %%; %s)" % (100 * float(row["recall"]), 100 * float(row["worst draw"]), label)
+             for row, label in rows]
+    draws = {row["draws"] for row, _ in rows}
     if len(draws) != 1:
         raise ResultsError("%s: scenes over different numbers of draws" % path)
     return "over %s draws of each scene: %s and %s" % (draws.pop(), ", ".join(found[:-1]), found[-1])

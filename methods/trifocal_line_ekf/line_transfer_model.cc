@@ -132,7 +132,7 @@ void LineTransferModel::Reset(const StereoRig& rig) {
   current_.clear();
   matches_.clear();
   current_stereo_ = 0;
-  line_map_.Clear();
+  line_map_.Reset(rig);
   if (refiner_) refiner_->Reset(rig);
 }
 
@@ -227,16 +227,19 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
   if (carry && line_map_.size() > 0) {
     // A line of the new pair is a map line by its id, else (map_association_px) by its
     // projection, among the map lines whose ids the new pair does not hold (reference_ is
-    // sorted by id, so map_excluded_ is ascending).
-    map_excluded_.clear();
-    for (const StereoLine& line : reference_) map_excluded_.push_back(line.id);
+    // sorted by id).
+    const auto held = [this](std::int64_t id) {
+      const auto it = std::lower_bound(reference_.begin(), reference_.end(), id,
+                                       [](const StereoLine& line, std::int64_t key) { return line.id < key; });
+      return it != reference_.end() && it->id == id;
+    };
     const double association_px = options_.refinement.map_association_px;
     for (size_t i = 0; i < reference_.size(); ++i) {
       std::int64_t id = reference_[i].id;
       const ReferenceLineMap::Line* carried = line_map_.Find(id);
       if (carried == nullptr && association_px > 0.0 &&
-          line_map_.FindByProjection(rig_, reference_[i].left.segment, reference_[i].right.segment, association_px,
-                                     map_excluded_, &id)) {
+          line_map_.FindByProjection(reference_[i].left.segment, reference_[i].right.segment, association_px, held,
+                                     &id)) {
         carried = line_map_.Find(id);
       }
       if (carried == nullptr) continue;

@@ -245,7 +245,6 @@ class LineTransferModel final : public MatchedFeatureModel<LineTransferMatch> {
   bool last_pose_valid_ = false;
   // The refined lines carried into new reference pairs (refinement.carry_over).
   ReferenceLineMap line_map_;
-  std::vector<std::int64_t> map_excluded_;  // scratch: the new pair's ids, ascending
 
   std::vector<StereoLine> reference_;
   std::vector<ReferenceLine> reference_lines_;  // parallel to reference_

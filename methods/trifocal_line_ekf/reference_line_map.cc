@@ -14,7 +14,25 @@ void ReferenceLineMap::Age() {
   }
 }
 
-void ReferenceLineMap::Keep(std::int64_t id, const Line& line) { lines_[id] = Entry{line, 0}; }
+void ReferenceLineMap::Reset(const StereoRig& rig) {
+  pixel_from_normalized_[0] = PixelFromNormalizedLineMatrix(rig.left);
+  pixel_from_normalized_[1] = PixelFromNormalizedLineMatrix(rig.right);
+  right_from_left_ = rig.right_from_left;
+  lines_.clear();
+}
+
+void ReferenceLineMap::Project(Entry* entry) const {
+  const PlueckerLine& line = entry->line.line;
+  entry->projected[0] = pixel_from_normalized_[0] * line.moment;
+  entry->projected[1] = pixel_from_normalized_[1] * TransformPluecker(right_from_left_, line).moment;
+}
+
+void ReferenceLineMap::Keep(std::int64_t id, const Line& line) {
+  Entry& entry = lines_[id];
+  entry.line = line;
+  entry.age = 0;
+  Project(&entry);
+}
 
 void ReferenceLineMap::Move(const Rigid3d& new_from_old) {
   // [n; d] -> new frame: [R, [t]x R; 0, R], the SE(3) adjoint in the [v; w] ordering.
@@ -31,6 +49,7 @@ void ReferenceLineMap::Move(const Rigid3d& new_from_old) {
     line.line = LineFromParameters(parameters);
     line.line_d_tangent = basis;
     line.tangent_covariance = move * line.tangent_covariance * move.transpose();
+    Project(&it->second);
     ++it;
   }
 }
@@ -40,21 +59,15 @@ const ReferenceLineMap::Line* ReferenceLineMap::Find(std::int64_t id) const {
   return it == lines_.end() ? nullptr : &it->second.line;
 }
 
-bool ReferenceLineMap::FindByProjection(const StereoRig& rig, const Segment2d& left, const Segment2d& right,
-                                        double max_px, const std::vector<std::int64_t>& excluded,
-                                        std::int64_t* id) {
-  const Eigen::Matrix3d left_pixel_from_normalized = PixelFromNormalizedLineMatrix(rig.left);
-  const Eigen::Matrix3d right_pixel_from_normalized = PixelFromNormalizedLineMatrix(rig.right);
+bool ReferenceLineMap::FindByProjection(const Segment2d& left, const Segment2d& right, double max_px,
+                                        const std::function<bool(std::int64_t)>& excluded, std::int64_t* id) {
   const Eigen::Vector3d observed[2] = {LineFromSegment(left), LineFromSegment(right)};
   const Segment2d* segments[2] = {&left, &right};
   duplicates_.clear();
   double best_distance = 0.0;
   for (const auto& [candidate, entry] : lines_) {
-    if (std::binary_search(excluded.begin(), excluded.end(), candidate)) continue;
-    const PlueckerLine& line = entry.line.line;
-    const Eigen::Vector3d projected[2] = {
-        left_pixel_from_normalized * line.moment,
-        right_pixel_from_normalized * TransformPluecker(rig.right_from_left, line).moment};
+    if (excluded(candidate)) continue;
+    const Eigen::Vector3d* projected = entry.projected;
     double largest = 0.0;
     bool near = true;
     for (int c = 0; c < 2 && near; ++c) {

@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -52,6 +53,8 @@ class ReferenceLineMap {
   // previous pair's lines are kept, the refinement's plain carry_over).
   explicit ReferenceLineMap(int max_age = 0) : max_age_(max_age) {}
 
+  // A new sequence with this rig (for FindByProjection): no lines.
+  void Reset(const StereoRig& rig);
   void Clear() { lines_.clear(); }
   // A new reference pair starts: every line ages by one pair, and those past max_age go.
   void Age();
@@ -65,10 +68,10 @@ class ReferenceLineMap {
   // The line stored as `id`, or null.
   const Line* Find(std::int64_t id) const;
   // The id of the map line that the stereo line (left, right) is, by the projection test
-  // above, among the lines whose id is not in `excluded` (sorted ascending): false when none
-  // passes. Drops the duplicates of the one found.
-  bool FindByProjection(const StereoRig& rig, const Segment2d& left, const Segment2d& right, double max_px,
-                        const std::vector<std::int64_t>& excluded, std::int64_t* id);
+  // above into the rig of Reset, among the lines for whose id `excluded` is false: false when
+  // none passes. Drops the duplicates of the one found.
+  bool FindByProjection(const Segment2d& left, const Segment2d& right, double max_px,
+                        const std::function<bool(std::int64_t)>& excluded, std::int64_t* id);
   void Erase(std::int64_t id) { lines_.erase(id); }
   int size() const { return static_cast<int>(lines_.size()); }
 
@@ -76,8 +79,13 @@ class ReferenceLineMap {
   struct Entry {
     Line line;
     int age = 0;
+    Eigen::Vector3d projected[2];  // the line in the left and right image (pixels), for FindByProjection
   };
+  // Projects the entry's line into both images (Keep and Move: once per line and reference pair).
+  void Project(Entry* entry) const;
   int max_age_;
+  Eigen::Matrix3d pixel_from_normalized_[2] = {Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity()};
+  Rigid3d right_from_left_;
   std::map<std::int64_t, Entry> lines_;
   std::vector<std::int64_t> duplicates_;  // scratch of FindByProjection
 };

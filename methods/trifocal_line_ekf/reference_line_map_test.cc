@@ -86,37 +86,42 @@ TEST(ReferenceLineMap, KeepsALineForMaxAgeReferencePairs) {
 TEST(ReferenceLineMap, FindsTheLineASegmentPairProjectsFrom) {
   const StereoRig rig;
   ReferenceLineMap map(3);
+  map.Reset(rig);
+  const auto none = [](std::int64_t) { return false; };
+  const auto is4 = [](std::int64_t id) { return id == 4; };
   map.Keep(4, MapLine(kP, kQ));
   map.Keep(9, MapLine(kP + Eigen::Vector3d(0.2, 0.0, 0.0), kQ + Eigen::Vector3d(0.2, 0.0, 0.0)));
   // A shorter piece of line 4, seen again.
   const Eigen::Vector3d p = kP + 0.2 * (kQ - kP), q = kP + 0.7 * (kQ - kP);
   const Segment2d left = Projected(rig, 0, p, q), right = Projected(rig, 1, p, q);
   std::int64_t id = -1;
-  ASSERT_TRUE(map.FindByProjection(rig, left, right, 1.0, {}, &id));
+  ASSERT_TRUE(map.FindByProjection(left, right, 1.0, none, &id));
   EXPECT_EQ(id, 4);
   // Not when its id is the new pair's (it is found by id then), nor with the other orientation.
-  EXPECT_FALSE(map.FindByProjection(rig, left, right, 1.0, {4}, &id));
+  EXPECT_FALSE(map.FindByProjection(left, right, 1.0, is4, &id));
   const Segment2d left_reversed(left[2], left[3], left[0], left[1]), right_reversed(right[2], right[3], right[0], right[1]);
-  EXPECT_FALSE(map.FindByProjection(rig, left_reversed, right_reversed, 1.0, {}, &id));
+  EXPECT_FALSE(map.FindByProjection(left_reversed, right_reversed, 1.0, none, &id));
   // An endpoint 0.6 px off the line in the right image: within 1 px, not within 0.5 px.
   const Eigen::Vector2d d = (right.tail<2>() - right.head<2>()).normalized();
   Segment2d right_off = right;
   right_off.tail<2>() += 0.6 * Eigen::Vector2d(-d.y(), d.x());
-  EXPECT_TRUE(map.FindByProjection(rig, left, right_off, 1.0, {}, &id));
-  EXPECT_FALSE(map.FindByProjection(rig, left, right_off, 0.5, {}, &id));
+  EXPECT_TRUE(map.FindByProjection(left, right_off, 1.0, none, &id));
+  EXPECT_FALSE(map.FindByProjection(left, right_off, 0.5, none, &id));
   EXPECT_EQ(map.size(), 2);
 }
 
 TEST(ReferenceLineMap, TakesTheNearestOfTwoAndDropsTheOtherAsItsDuplicate) {
   const StereoRig rig;
   ReferenceLineMap map(3);
+  map.Reset(rig);
+  const auto none = [](std::int64_t) { return false; };
   // The same line stored twice, once 1 mm off (about 0.2 px at 2.5 m).
   const Eigen::Vector3d off(0.0, 0.001, 0.0);
   map.Keep(2, MapLine(kP + off, kQ + off));
   map.Keep(5, MapLine(kP, kQ));
   map.Keep(8, MapLine(kP + Eigen::Vector3d(0.2, 0.0, 0.0), kQ + Eigen::Vector3d(0.2, 0.0, 0.0)));
   std::int64_t id = -1;
-  ASSERT_TRUE(map.FindByProjection(rig, Projected(rig, 0, kP, kQ), Projected(rig, 1, kP, kQ), 1.0, {}, &id));
+  ASSERT_TRUE(map.FindByProjection(Projected(rig, 0, kP, kQ), Projected(rig, 1, kP, kQ), 1.0, none, &id));
   EXPECT_EQ(id, 5);
   EXPECT_EQ(map.Find(2), nullptr);
   EXPECT_NE(map.Find(5), nullptr);
