@@ -288,13 +288,16 @@ FRONTEND_DRAWS = (("frontend", "room 752x480 (loop)", "room loop, 752 × 480"),
                    "paper scene, `paper_scene.json` of `frontend/tracker_configs/` and `frontend/frontend_configs/`"),
                   ("frontend/paper_scene_100_frames", "paper scene 640x480 (paper motion)",
                    "paper scene, the same options, 100 frames (the protocol's length)"),
+                  ("frontend/paper_scene_100_frames_held_out", "paper scene 640x480 (paper motion)",
+                   "paper scene, the same options, 100 frames, draws 301–400 (held out from the choice of options)"),
                   ("frontend", "room 640x480 (loop, default rig)", "room loop, default 640 × 480 rig"))
 
 
 def frontend_draws_table(r):
     """trifocal_line_ekf from rendered images: ten draws of each scene (results/frontend/draws.md), a hundred
-    of the paper scene with its options (results/frontend/paper_scene_tracker/draws.md) and three hundred of
-    it at the paper protocol's 100 frames (results/frontend/paper_scene_100_frames/draws.md)."""
+    of the paper scene with its options (results/frontend/paper_scene_tracker/draws.md), three hundred of
+    it at the paper protocol's 100 frames (results/frontend/paper_scene_100_frames/draws.md) and a hundred
+    more held out from the choice of its options (results/frontend/paper_scene_100_frames_held_out/)."""
     lines = ["| scene, options | draws | ATE from the images, median / max | images / the same tracker on "
              "the truth with the front end's noise (paper scene: the synthetic protocol), median / max | draws within 1.5× "
              "| stereo matches correct, worst draw | tracks correct, worst draw |",
