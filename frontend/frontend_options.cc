@@ -72,7 +72,7 @@ const OptionSchema<TrackingOptions>& TrackingOptionsSchema() {
           .Field("min_inlier_fraction", &T::min_inlier_fraction, InRange(0.0, 1.0), "refit: fewest inliers, fraction of the points")
           .Field("max_rms_px", &T::max_rms_px, Positive(), "refit: largest RMS distance of the inliers, px")
           .Field("min_length_px", &T::min_length_px, InRange(2.0, 1e4), "shortest tracked segment kept, px")
-          .Field("snap_radius_px", &T::snap_radius_px, InRange(0.0, 20.0), "edge snapping: search across the line, px (0 = off)")
+          .Field("snap_radius_px", &T::snap_radius_px, InRange(0.0, 20.0), "edge snapping: search across the line, px, rounded up to whole pixels (0 = off)")
           .Field("snap_spacing_px", &T::snap_spacing_px, InRange(0.5, 100.0), "edge snapping: one search every this many px")
           .Field("snap_max_places", &T::snap_max_places, InRange(3, 1000), "edge snapping: most searches per segment")
           .Field("snap_min_fraction", &T::snap_min_fraction, InRange(0.0, 1.0), "edge snapping: fewest searches finding an edge, fraction")

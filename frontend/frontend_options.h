@@ -161,8 +161,9 @@ struct TrackingOptions {
   double min_length_px = 25.0;
   // Edge snapping after the refit (line_tracking.h): every snap_spacing_px along the refitted
   // segment (at most snap_max_places places), the strongest image gradient across it of the
-  // segment's polarity within snap_radius_px is located to sub-pixel precision, and the line is
-  // refitted to those edge points; the segment is lost when edges are found at fewer than
+  // segment's polarity within snap_radius_px (rounded up to whole pixels: the search runs over
+  // integer offsets) is located to sub-pixel precision, and the line is refitted to those edge
+  // points; the segment is lost when edges are found at fewer than
   // snap_min_fraction of the places. This anchors the line to the current image instead of to
   // its previous position (no drift). 0 = off.
   double snap_radius_px = 2.0;
