@@ -31,6 +31,13 @@ void JoinById(const std::vector<A>& a, const std::vector<B>& b, OnMatch&& on_mat
   }
 }
 
+// Whether a range sorted by id (SortedById) holds an element with this id (binary search).
+template <typename T, typename Id>
+bool ContainsId(const std::vector<T>& sorted, Id id) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), id, [](const T& x, Id key) { return x.id < key; });
+  return it != sorted.end() && it->id == id;
+}
+
 // `elements` when already sorted by id (files and the simulator list lines by id), else a copy
 // sorted by id in *scratch (kept by the caller, so that nothing is allocated per frame).
 template <typename T>

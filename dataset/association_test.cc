@@ -45,6 +45,13 @@ TEST(JoinById, DuplicatedIdsPairInOrder) {
   EXPECT_EQ(Join(a, b), expected);
 }
 
+TEST(ContainsId, FindsExactlyTheIdsOfASortedRange) {
+  const auto sorted = WithIds({1, 3, 4, 7, 9});
+  for (std::int64_t id : {1, 3, 4, 7, 9}) EXPECT_TRUE(ContainsId(sorted, id)) << id;
+  for (std::int64_t id : {-1, 0, 2, 5, 8, 10}) EXPECT_FALSE(ContainsId(sorted, id)) << id;
+  EXPECT_FALSE(ContainsId(WithIds({}), std::int64_t{1}));
+}
+
 TEST(SortedById, ReturnsTheInputWhenSortedAndASortedCopyOtherwise) {
   std::vector<LineObservation> scratch;
   const auto sorted = WithIds({1, 2, 8});

@@ -163,9 +163,9 @@ struct TrackingOptions {
   // segment (at most snap_max_places places), the strongest image gradient across it of the
   // segment's polarity within snap_radius_px (rounded up to whole pixels: the search runs over
   // integer offsets) is located to sub-pixel precision, and the line is refitted to those edge
-  // points; the segment is lost when edges are found at fewer than
-  // snap_min_fraction of the places. This anchors the line to the current image instead of to
-  // its previous position (no drift). 0 = off.
+  // points; the segment is lost when edges are found at fewer than snap_min_fraction of the
+  // places. This anchors the line to the current image instead of to its previous position (no
+  // drift). 0 = off.
   double snap_radius_px = 2.0;
   double snap_spacing_px = 1.5;
   int snap_max_places = 24;  // on long segments the places are spread out

@@ -228,11 +228,7 @@ int LineTransferModel::SetReference(const StereoFrame& frame) {
     // A line of the new pair is a map line by its id, else (map_association_px) by its
     // projection, among the map lines whose ids the new pair does not hold (reference_ is
     // sorted by id).
-    const auto held = [this](std::int64_t id) {
-      const auto it = std::lower_bound(reference_.begin(), reference_.end(), id,
-                                       [](const StereoLine& line, std::int64_t key) { return line.id < key; });
-      return it != reference_.end() && it->id == id;
-    };
+    const auto held = [this](std::int64_t id) { return ContainsId(reference_, id); };
     const double association_px = options_.refinement.map_association_px;
     for (size_t i = 0; i < reference_.size(); ++i) {
       std::int64_t id = reference_[i].id;
