@@ -12,6 +12,7 @@
 #include "common/json_changes.h"
 #include "dataset/euroc.h"
 #include "geometry/distortion.h"
+#include "render/sequence_renderer.h"
 
 namespace slt {
 namespace {
@@ -280,6 +281,44 @@ TEST(AslLayout, DistortedPairsAreRectified) {
   EXPECT_NEAR(rig.right_from_left.translation.x(), -0.1, 1e-9);
   EXPECT_EQ(rig.left.cy, rig.right.cy);
   EXPECT_EQ(source->Read(0).left.size(), cv::Size(24, 16));
+}
+
+TEST(KittiLayout, ReadsARenderedStreetAsItWasWritten) {
+  // A rendered street in KITTI's layout reads back with the rig, times, images and ground truth
+  // it was made with (WriteKittiSequence), as a downloaded KITTI sequence does.
+  SimulationConfig config =
+      SimulationConfigFromJson({{"scene", {{"type", "street"}}}, {"frames", 4}, {"motion", {{"profile", "car"}}}}, "t");
+  config.rig.width = 320;  // the middle of KITTI's rig: a faster test
+  config.rig.height = 96;
+  for (PinholeCamera* camera : {&config.rig.left, &config.rig.right}) {
+    camera->cx = 160.25;
+    camera->cy = 48.5;
+  }
+  const SimulatedSequence sequence = Simulate(config);
+  const fs::path dir = TempFolder("rendered_street");
+  WriteKittiSequence(dir.string(), sequence, config, 2);
+  const auto source = OpenStereoImages(dir.string());
+  EXPECT_NE(source->Describe().find("KITTI"), std::string::npos) << source->Describe();
+  ASSERT_EQ(source->size(), 4);
+  const StereoRig& rig = source->rig();
+  EXPECT_EQ(rig.width, 320);
+  EXPECT_NEAR(rig.left.fx, 718.856, 1e-9);
+  EXPECT_NEAR(rig.left.cx, 160.25, 1e-9);
+  EXPECT_NEAR(rig.right_from_left.translation.x(), -386.1448 / 718.856, 1e-12);
+  EXPECT_NEAR(source->Time(3), 0.3, 1e-12);
+  const SequenceRenderer renderer(sequence, config);
+  EXPECT_EQ(cv::norm(source->Read(2).right, renderer.Image(2, 1), cv::NORM_INF), 0.0);
+  ASSERT_EQ(source->ground_truth().size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Matrix4d error =
+        source->ground_truth()[k].world_from_cam.ToMatrix4() - sequence.ground_truth[k].world_from_cam.ToMatrix4();
+    EXPECT_LT(error.cwiseAbs().maxCoeff(), 1e-5) << k;  // poses.txt's 7 significant digits
+  }
+  // Lens distortion has no place in KITTI's layout: refused before anything is written.
+  config.images.distortion = {-0.1, 0.0, 0.0, 0.0};
+  const fs::path other = TempFolder("rendered_street_distorted");
+  EXPECT_THROW(WriteKittiSequence(other.string(), sequence, config, 1), std::invalid_argument);
+  EXPECT_TRUE(fs::is_empty(other));
 }
 
 // The real excerpts (../shared/data, README there), or the folder named by SLT_SHARED_DATA.

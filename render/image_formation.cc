@@ -34,6 +34,29 @@ const std::array<float, kNormalTableSize>& NormalTable() {
 
 }  // namespace
 
+double AutoExposureGain(const ImageConfig& config, std::uint64_t seed, int frame) {
+  if (config.auto_exposure_step <= 0.0) return 1.0;
+  // Replays the steps up to `frame`: each image is a function of its frame alone.
+  SplitMix64 g(StreamSeed(seed, "auto_exposure"));
+  const double step = config.auto_exposure_step, lo = 1.0 - 2.0 * step, hi = 1.0 + 2.0 * step;
+  double previous = 1.0, target = 1.0;
+  double at = Uniform(g, 0.5, 1.5) * config.auto_exposure_interval_frames;  // frame of the next step
+  while (at <= frame) {
+    const double factor = Uniform(g, 1.0 - step, 1.0 + step);
+    previous = target;
+    // A step that would leave [1 - 2 step, 1 + 2 step] goes the other way: the camera's
+    // controller keeps the brightness near its set point.
+    target = previous * factor;
+    if (target < lo || target > hi) target = previous / factor;
+    const double next = at + Uniform(g, 0.5, 1.5) * config.auto_exposure_interval_frames;
+    if (next > frame) break;
+    at = next;
+  }
+  if (at > frame) return target;  // before the first step
+  const double progress = std::min(1.0, (frame - std::ceil(at) + 1.0) / config.auto_exposure_ramp_frames);
+  return previous + progress * (target - previous);
+}
+
 double ExposureGain(const ImageConfig& config, std::uint64_t seed, int frame) {
   SplitMix64 g(StreamSeed(seed, "exposure"));
   double wave = 0.0;
@@ -41,7 +64,7 @@ double ExposureGain(const ImageConfig& config, std::uint64_t seed, int frame) {
     const double period = Uniform(g, 60.0, 180.0), phase = Uniform(g, 0.0, 2.0 * M_PI);
     wave += amplitude * std::sin(2.0 * M_PI * frame / period + phase);
   }
-  return 1.0 + config.exposure_variation * wave;
+  return (1.0 + config.exposure_variation * wave) * AutoExposureGain(config, seed, frame);
 }
 
 cv::Mat FormImage(const cv::Mat& radiance, const ImageConfig& config, double gain, std::uint64_t noise_key) {

@@ -12,6 +12,7 @@
 #include "common/file_io.h"
 #include "common/parallel.h"
 #include "dataset/euroc.h"
+#include "dataset/kitti.h"
 #include "geometry/distortion.h"
 #include "geometry/se3.h"
 #include "render/image_formation.h"
@@ -103,6 +104,32 @@ cv::Mat SequenceRenderer::Image(int frame, int camera) const {
                    key);
 }
 
+namespace {
+
+// Renders every frame's two images on `threads` workers and writes them as PNG to
+// path(frame, camera).
+void RenderImages(const SimulatedSequence& sequence, const SimulationConfig& config, int threads,
+                  const std::function<void(int done, int total)>& progress,
+                  const std::function<std::string(int frame, int camera)>& path) {
+  const int frames = static_cast<int>(sequence.ground_truth.size());
+  const SequenceRenderer renderer(sequence, config);
+  std::mutex mutex;  // guards done and the progress callback
+  int done = 0;
+  ParallelFor(static_cast<size_t>(frames), threads, [&](size_t k) {
+    for (int camera = 0; camera < 2; ++camera) {
+      const std::string file = path(static_cast<int>(k), camera);
+      if (!cv::imwrite(file, renderer.Image(static_cast<int>(k), camera))) {
+        throw std::runtime_error(file + ": cannot write image");
+      }
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    ++done;
+    if (progress) progress(done, frames);
+  });
+}
+
+}  // namespace
+
 void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
                         int threads, const std::function<void(int done, int total)>& progress) {
   namespace fs = std::filesystem;
@@ -121,19 +148,8 @@ void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequenc
     }
   }
 
-  const SequenceRenderer renderer(sequence, config);
-  std::mutex mutex;  // guards done and the progress callback
-  int done = 0;
-  ParallelFor(static_cast<size_t>(frames), threads, [&](size_t k) {
-    for (int camera = 0; camera < 2; ++camera) {
-      const fs::path file = work / camera_names[camera] / "data" / (std::to_string(timestamps[k]) + ".png");
-      if (!cv::imwrite(file.string(), renderer.Image(static_cast<int>(k), camera))) {
-        throw std::runtime_error(file.string() + ": cannot write image");
-      }
-    }
-    const std::lock_guard<std::mutex> lock(mutex);
-    ++done;
-    if (progress) progress(done, frames);
+  RenderImages(sequence, config, threads, progress, [&](int k, int camera) {
+    return (work / camera_names[camera] / "data" / (std::to_string(timestamps[k]) + ".png")).string();
   });
 
   const StereoRig& rig = sequence.sequence.rig;  // the calibration given to the tracker
@@ -151,6 +167,28 @@ void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequenc
   }
   WriteEurocGroundTruth((work / "state_groundtruth_estimate0" / "data.csv").string(), sequence.ground_truth);
   ReplaceDirectory(work.string(), final_dir.string());
+}
+
+
+void WriteKittiSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
+                        int threads, const std::function<void(int done, int total)>& progress) {
+  namespace fs = std::filesystem;
+  if (!IsZero(config.images.distortion)) {
+    throw std::invalid_argument(dir + ": KITTI's layout holds rectified images: images.distortion must be zero");
+  }
+  const StereoRig& rig = sequence.sequence.rig;  // the calibration given to the tracker
+  const std::string folders[2] = {(fs::path(dir) / "image_0").string(), (fs::path(dir) / "image_1").string()};
+  CreateDirectories(dir);
+  // First: it refuses a rig that is not a rectified pair before any image is rendered.
+  WriteKittiCalibration((fs::path(dir) / "calib.txt").string(), rig);
+  const std::string work[2] = {FreshStagingDir(folders[0]), FreshStagingDir(folders[1])};
+  RenderImages(sequence, config, threads, progress,
+               [&](int k, int camera) { return (fs::path(work[camera]) / KittiImageName(k)).string(); });
+  std::vector<double> times;
+  for (const TimedPose& pose : sequence.ground_truth) times.push_back(pose.time);
+  WriteKittiTimes((fs::path(dir) / "times.txt").string(), times);
+  WriteKittiTrajectory((fs::path(dir) / "poses.txt").string(), sequence.ground_truth);
+  for (int camera = 0; camera < 2; ++camera) ReplaceDirectory(work[camera], folders[camera]);
 }
 
 }  // namespace slt

@@ -61,4 +61,11 @@ class SequenceRenderer {
 void WriteEurocSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
                         int threads, const std::function<void(int done, int total)>& progress = nullptr);
 
+// The same images in KITTI odometry's layout (dataset/kitti.h): DIR/image_0 and image_1
+// (<000000>.png, each folder staged as <folder>.partial and swapped in whole), DIR/calib.txt
+// (the tracker's rig, which must be a rectified pair: std::invalid_argument otherwise, as with
+// lens distortion), DIR/times.txt and DIR/poses.txt (the left camera's ground truth).
+void WriteKittiSequence(const std::string& dir, const SimulatedSequence& sequence, const SimulationConfig& config,
+                        int threads, const std::function<void(int done, int total)>& progress = nullptr);
+
 }  // namespace slt

@@ -21,6 +21,19 @@ std::string ReadBytes(const fs::path& path) {
   return s.str();
 }
 
+// Expects every file under `a` to have the same bytes as its namesake under `b`; returns how
+// many there are.
+std::size_t CompareFiles(const fs::path& a, const fs::path& b) {
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(a)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path relative = fs::relative(entry.path(), a);
+    EXPECT_EQ(ReadBytes(entry.path()), ReadBytes(b / relative)) << relative;
+    ++files;
+  }
+  return files;
+}
+
 // A small rig (160 x 120) keeps the sequences fast.
 SimulationConfig SmallRoom(int frames) {
   nlohmann::json rig = {{"width", 160},
@@ -40,15 +53,8 @@ TEST(SequenceRenderer, EurocOutputIsIdenticalForAnyThreadCount) {
   fs::remove_all(base);
   WriteEurocSequence((base / "one").string(), sequence, config, 1);
   WriteEurocSequence((base / "three").string(), sequence, config, 3);
-  std::size_t files = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(base / "one")) {
-    if (!entry.is_regular_file()) continue;
-    const fs::path relative = fs::relative(entry.path(), base / "one");
-    EXPECT_EQ(ReadBytes(entry.path()), ReadBytes(base / "three" / relative)) << relative;
-    ++files;
-  }
   // 2 x 5 images, 2 x (data.csv, sensor.yaml), the ground truth.
-  EXPECT_EQ(files, 15u);
+  EXPECT_EQ(CompareFiles(base / "one", base / "three"), 15u);
   EXPECT_FALSE(fs::exists(base / "one" / "mav0.partial"));
 
   // The layout: EuRoC's image list and names, 8-bit grey PNGs of the rig's size.
@@ -68,6 +74,58 @@ TEST(SequenceRenderer, EurocOutputIsIdenticalForAnyThreadCount) {
   const SequenceRenderer renderer(sequence, config);
   EXPECT_EQ(cv::norm(image, renderer.Image(1, 1), cv::NORM_INF), 0.0);
   fs::remove_all(base);
+}
+
+TEST(SequenceRenderer, KittiOutputIsIdenticalForAnyThreadCount) {
+  const SimulationConfig config = SmallRoom(4);
+  const SimulatedSequence sequence = Simulate(config);
+  const fs::path base = fs::temp_directory_path() / ("slt_render_test_kitti_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  WriteKittiSequence((base / "one").string(), sequence, config, 1);
+  WriteKittiSequence((base / "three").string(), sequence, config, 3);
+  // 2 x 4 images, calib.txt, times.txt, poses.txt; no staging folder left.
+  EXPECT_EQ(CompareFiles(base / "one", base / "three"), 11u);
+  EXPECT_TRUE(fs::exists(base / "one" / "image_1" / "000003.png"));
+  EXPECT_FALSE(fs::exists(base / "one" / "image_0.partial"));
+  fs::remove_all(base);
+}
+
+TEST(SequenceRenderer, AutoExposureStepsAreBoundedRampedAndSharedByBothCameras) {
+  ImageConfig images;
+  EXPECT_EQ(AutoExposureGain(images, 1, 50), 1.0);  // off by default
+  images.auto_exposure_step = 0.2;
+  int steps = 0;
+  double previous = AutoExposureGain(images, 1, 0);
+  for (int k = 1; k < 600; ++k) {
+    const double gain = AutoExposureGain(images, 1, k);
+    EXPECT_GE(gain, 0.6 - 1e-12);
+    EXPECT_LE(gain, 1.4 + 1e-12);
+    // A step of at most 20 % is spread over the 3-frame ramp.
+    EXPECT_LE(std::abs(gain / previous - 1.0), 0.2 / 3.0 + 0.02) << k;
+    steps += gain != previous;
+    previous = gain;
+  }
+  // About one step every 15 frames, each over 3 frames.
+  EXPECT_GT(steps, 60);
+  EXPECT_LT(steps, 180);
+  EXPECT_NE(AutoExposureGain(images, 2, 300), AutoExposureGain(images, 1, 300));
+  // Frame k's gain is the same whichever frames were asked for before.
+  EXPECT_EQ(AutoExposureGain(images, 1, 300), AutoExposureGain(images, 1, 300));
+  SimulationConfig config = SmallRoom(40);
+  config.images.auto_exposure_step = 0.2;
+  config.images.read_noise = 0.0;
+  config.images.shot_noise = 0.0;
+  config.images.exposure_variation = 0.0;
+  const SimulatedSequence sequence = Simulate(config);
+  const SequenceRenderer renderer(sequence, config);
+  // The images' brightness follows the gain, left and right alike.
+  for (const int k : {10, 30}) {
+    const double ratio = cv::mean(renderer.Image(k, 0))[0] / cv::mean(renderer.Image(k, 1))[0];
+    EXPECT_NEAR(ratio, 1.0, 0.05) << k;
+  }
+  const double gain_ratio = AutoExposureGain(config.images, config.ImageSeed(), 30) /
+                            AutoExposureGain(config.images, config.ImageSeed(), 0);
+  EXPECT_NEAR(cv::mean(renderer.Image(30, 0))[0] / cv::mean(renderer.Image(0, 0))[0], gain_ratio, 0.1);
 }
 
 TEST(SequenceRenderer, NoiseHasTheConfiguredSpread) {

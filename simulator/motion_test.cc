@@ -135,3 +135,121 @@ TEST(Motion, SeedSelectsTheMotion) {
 
 }  // namespace
 }  // namespace slt
+
+namespace slt {
+namespace {
+
+MotionConfig Profile(MotionProfile profile) {
+  MotionConfig c;
+  c.profile = profile;
+  return c;
+}
+
+// Per-frame speed (m/s) and angular rate (deg/s) of the increments.
+struct Rates {
+  std::vector<double> speed, rate;
+};
+Rates RatesOf(const Trajectory& t, double frame_rate) {
+  Rates r;
+  for (std::size_t k = 1; k < t.size(); ++k) {
+    const Rigid3d step = t[k - 1].world_from_cam.Inverse() * t[k].world_from_cam;
+    r.speed.push_back(step.translation.norm() * frame_rate);
+    r.rate.push_back(LogSO3(step.rotation).norm() / kDeg * frame_rate);
+  }
+  return r;
+}
+double Mean(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (const double x : v) sum += x;
+  return sum / static_cast<double>(v.size());
+}
+double Max(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+TEST(MotionProfile, EveryProfileStartsAtTheIdentityAndFollowsItsSeed) {
+  for (const MotionProfile p : {MotionProfile::kHandheld, MotionProfile::kMav, MotionProfile::kCar}) {
+    const Trajectory a = MakeTrajectory(Profile(p), 200, 20.0, 5), b = MakeTrajectory(Profile(p), 200, 20.0, 5);
+    const Trajectory c = MakeTrajectory(Profile(p), 200, 20.0, 6);
+    EXPECT_TRUE(a[0].world_from_cam.rotation.isIdentity(0.0)) << MotionProfileName(p);
+    EXPECT_TRUE(a[0].world_from_cam.translation.isZero(0.0)) << MotionProfileName(p);
+    EXPECT_EQ(PoseError(a[150].world_from_cam, b[150].world_from_cam), 0.0) << MotionProfileName(p);
+    EXPECT_GT(PoseError(a[150].world_from_cam, c[150].world_from_cam), 1e-4) << MotionProfileName(p);
+    // Overrides motion.type.
+    MotionConfig loop = Profile(p);
+    loop.type = MotionType::kLoop;
+    EXPECT_EQ(PoseError(MakeTrajectory(loop, 200, 20.0, 5)[150].world_from_cam, a[150].world_from_cam), 0.0);
+  }
+}
+
+TEST(MotionProfile, HandheldMovesAboutAMillimetreAndATenthOfADegreePerFrame) {
+  const Rates r = RatesOf(MakeTrajectory(Profile(MotionProfile::kHandheld), 1428, 30.0, 1), 30.0);
+  EXPECT_NEAR(Mean(r.speed) / 30.0, 0.001, 0.0005);
+  EXPECT_NEAR(Mean(r.rate) / 30.0, 0.1, 0.05);
+  EXPECT_LT(Max(r.speed) / 30.0, 0.003);
+  EXPECT_LT(Max(r.rate) / 30.0, 0.3);
+}
+
+TEST(MotionProfile, MavReachesButKeepsItsPeakSpeedAndYawRateAndStaysInItsBox) {
+  const MavMotionConfig c;
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    const Trajectory t = MakeTrajectory(Profile(MotionProfile::kMav), 400, 20.0, seed);
+    const Rates r = RatesOf(t, 20.0);
+    // The jitter and the tilt add a little to the planned peaks.
+    EXPECT_LT(Max(r.speed), 1.1 * c.max_speed_mps) << seed;
+    EXPECT_GT(Max(r.speed), 0.6 * c.max_speed_mps) << seed;
+    EXPECT_LT(Max(r.rate), 1.15 * c.max_yaw_rate_dps) << seed;
+    EXPECT_GT(Max(r.rate), 0.5 * c.max_yaw_rate_dps) << seed;
+    for (const TimedPose& pose : t) {
+      const Eigen::Vector3d slack = c.extent_m + Eigen::Vector3d::Constant(2.0 * c.hover_jitter_m);
+      EXPECT_TRUE((pose.world_from_cam.translation.cwiseAbs().array() <= slack.array()).all()) << seed;
+      // Upright: the camera's y axis within 15 deg of the world's down.
+      EXPECT_GT(pose.world_from_cam.rotation.col(1).y(), std::cos(15.0 * kDeg)) << seed;
+    }
+  }
+}
+
+TEST(MotionProfile, CarIsAtSpeedOnTheFirstFrameAndTurnsAsConfigured) {
+  const CarMotionConfig c;
+  const Trajectory t = MakeTrajectory(Profile(MotionProfile::kCar), 200, 10.0, 1);
+  const Rates r = RatesOf(t, 10.0);
+  EXPECT_NEAR(r.speed.front(), c.cruise_speed_mps, 0.05);
+  for (const double v : r.speed) {
+    EXPECT_GE(v, 5.0);
+    EXPECT_LE(v, 15.0);
+  }
+  // Up to 30 deg/s in the turn (the yaw rate of the arc, v / R, plus the body's motion).
+  EXPECT_GT(Max(r.rate), 25.0);
+  EXPECT_LT(Max(r.rate), 31.0);
+  // The heading at the end: turned right by turn_deg, level within the suspension's tilt.
+  const Eigen::Vector3d forward = t.back().world_from_cam.rotation.col(2);
+  EXPECT_NEAR(std::atan2(forward.x(), forward.z()) / kDeg, c.turn_deg, 1.0);
+  EXPECT_LT(std::abs(forward.y()), std::sin(1.0 * kDeg));
+  // On the route: the camera's centre within the suspension's travel of CarRoute's.
+  const CarRoute route(c);
+  std::vector<double> times;
+  for (const TimedPose& pose : t) times.push_back(pose.time);
+  const std::vector<double> s = route.Distances(times);
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    EXPECT_LT((t[k].world_from_cam.translation - route.Position(s[k])).norm(), 2.0 * c.suspension_m) << k;
+  }
+}
+
+TEST(MotionProfile, CarRouteIsContinuousAndMeetsItsSpeeds) {
+  const CarMotionConfig c;
+  const CarRoute route(c);
+  EXPECT_EQ(route.Speed(0.0), c.cruise_speed_mps);
+  EXPECT_EQ(route.Speed(c.straight_m + 1.0), c.turn_speed_mps);
+  const double arc_end = c.straight_m + c.turn_radius_m * c.turn_deg * kDeg;
+  EXPECT_NEAR(route.Position(arc_end).x(), c.turn_radius_m, 1e-9);
+  EXPECT_NEAR(route.Position(arc_end).z(), c.straight_m + c.turn_radius_m, 1e-9);
+  for (double s = 0.0; s < arc_end + 50.0; s += 0.25) {
+    EXPECT_NEAR((route.Position(s + 0.25) - route.Position(s)).norm(), 0.25, 1e-3) << s;
+    EXPECT_LE(std::abs(route.LongitudinalAcceleration(s)), std::max(c.brake_mps2, c.accelerate_mps2) + 1e-6) << s;
+  }
+  // A left turn mirrors it.
+  CarMotionConfig left = c;
+  left.turn_deg = -c.turn_deg;
+  EXPECT_NEAR(CarRoute(left).Position(arc_end).x(), -c.turn_radius_m, 1e-9);
+}
+
+}  // namespace
+}  // namespace slt

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <utility>
 
 #include "simulator/paper_cuboids.h"
@@ -179,6 +180,8 @@ class SceneBuilder {
       }
     }
   }
+
+ Surface& Last() { return surfaces_->back(); }
 
  private:
   std::vector<Surface>* surfaces_;
@@ -405,6 +408,285 @@ void MakeCorridorScene(const CorridorSceneConfig& c, RandomStream& rng, std::uin
                   Flat(0.97));
 }
 
+
+
+// Sizes of the street's cross-section (m), from the centre line: two lanes of 3.5 m, a parking
+// lane of 2 m, the curb (0.15 m high), a sidewalk of 3 m, the facades.
+constexpr double kLaneWidth = 3.5, kCurbOffset = 5.5, kFacadeOffset = 8.5, kCurbHeight = 0.15;
+// The renderer shades a downward-facing surface by about 0.31 (render/rasterizer.h: 0.6 + 0.35
+// n.L): the sky's albedo stands for its own light, bright but below saturation.
+constexpr double kSkyAlbedo = 2.6;
+// No parked car, lamp post or sign within this distance of a crossing's facades (m): the
+// corners stay clear for turning cars.
+constexpr double kCornerClearance = 15.0;
+
+SurfaceTexture Asphalt() { return {0.2, 0.12, TexturePattern::kMottled, 0.06, 0}; }
+SurfaceTexture Plaster(double albedo) { return {albedo, 0.06, TexturePattern::kMottled, 0.3, 0}; }
+SurfaceTexture Glass(double albedo) { return {albedo, 0.03, TexturePattern::kMottled, 0.5, 0}; }
+
+// One side of a street between two corners: the facade's wall frame (a along it, b up from
+// the sidewalk, out into the street) and its length; clear_start / clear_end: whether the
+// start or the end meets a crossing (kept clear of cars and posts).
+struct StreetSide {
+  Wall wall;
+  double length;
+  bool clear_start;
+  bool clear_end;
+};
+
+class StreetBuilder {
+ public:
+  StreetBuilder(SceneBuilder* s, RandomStream* rng) : s_(*s), rng_(*rng) {}
+
+  // Buildings 8-20 m wide side by side along the facade, 3-6 storeys each.
+  void Facade(const StreetSide& side) {
+    double a = 0.0, previous_height = 0.0;
+    while (a < side.length - 1e-9) {
+      double width = Uniform(rng_, 8.0, 20.0);
+      if (side.length - (a + width) < 6.0) width = side.length - a;  // no sliver at the end
+      const double height = Building(side.wall, a, a + width);
+      // The taller of two neighbours shows its side wall above the lower one's roof.
+      if (a > 0.0 && previous_height != height) {
+        const bool left_taller = previous_height > height;
+        SideWall(side.wall, a, std::min(previous_height, height), std::max(previous_height, height), left_taller);
+      }
+      previous_height = height;
+      a += width;
+    }
+  }
+
+  // Lamp posts every 25 m and a sign every 40 m on the sidewalk, parked cars in the parking
+  // lane, none near the corners.
+  void StreetFurniture(const StreetSide& side) {
+    const Wall& w = side.wall;
+    const double lo = side.clear_start ? kCornerClearance : 2.0;
+    const double hi = side.length - (side.clear_end ? kCornerClearance : 2.0);
+    const double curb = kFacadeOffset - kCurbOffset;  // the curb's distance from the facade
+    for (double a = lo + Uniform(rng_, 0.0, 10.0); a < hi; a += 25.0) {
+      s_.Box(w, a, 0.0, a + 0.16, 6.5, curb - 0.7, curb - 0.54, Paint(0.3), false, true);
+      s_.Box(w, a + 0.03, 6.3, a + 0.13, 6.4, curb - 0.54, curb + 1.2, Paint(0.3), true, false);
+      s_.Box(w, a - 0.1, 6.15, a + 0.26, 6.3, curb + 0.8, curb + 1.5, Flat(0.75), false, false);
+    }
+    for (double a = lo + Uniform(rng_, 0.0, 20.0); a < hi; a += 40.0) {
+      s_.Box(w, a, 0.0, a + 0.07, 2.9, curb - 0.45, curb - 0.38, Paint(0.5), false, true);
+      s_.Box(w, a + 0.07, 2.1, a + 0.1, 2.8, curb - 0.76, curb - 0.06, Flat(Uniform(rng_, 0.7, 0.95)));
+    }
+    // The parking lane lies kCurbOffset - kLaneWidth wide beyond the curb, a step below the
+    // sidewalk (b = -kCurbHeight is the road).
+    for (double a = lo + Uniform(rng_, 0.0, 4.0); a + 4.4 < hi;) {
+      if (Uniform01(rng_) < 0.6) {
+        const SurfaceTexture paint = Paint(Uniform(rng_, 0.15, 0.85));
+        const double b = -kCurbHeight;
+        s_.Box(w, a, b + 0.3, a + 4.3, b + 1.0, curb + 0.2, curb + 1.85, paint, false, true);
+        s_.Box(w, a + 1.1, b + 1.0, a + 3.3, b + 1.45, curb + 0.32, curb + 1.73, Glass(0.16), false, true);
+        a += 4.3 + Uniform(rng_, 0.8, 2.5);
+      } else {
+        a += Uniform(rng_, 3.0, 9.0);
+      }
+    }
+  }
+
+ private:
+  // A building on [a0, a1] of the facade; returns its height.
+  double Building(const Wall& w, double a0, double a1) {
+    const int storeys = 3 + static_cast<int>(UniformIndex(rng_, 4));
+    const double ground = Uniform(rng_, 3.8, 4.4), storey = Uniform(rng_, 3.0, 3.4);
+    const double top = ground + (storeys - 1) * storey, height = top + Uniform(rng_, 0.6, 1.2);
+    const double width = a1 - a0;
+    const SurfaceTexture plaster = Plaster(Uniform(rng_, 0.45, 0.8));
+    s_.Rect(w, a0, 0.0, a1, height, 0.0, plaster);
+    // A cornice under the roof line and a band between the ground floor and the first floor.
+    s_.Box(w, a0, top + 0.1, a1, top + 0.4, 0.0, 0.3, Plaster(Uniform(rng_, 0.55, 0.9)), true);
+    s_.Rect(w, a0, ground - 0.3, a1, ground, 0.02, Plaster(Uniform(rng_, 0.35, 0.85)));
+    // Windows: a frame with the pane in front of it, in columns over the upper storeys.
+    const double pitch = Uniform(rng_, 2.3, 3.2), pane_width = Uniform(rng_, 1.0, 1.4);
+    const double pane_height = Uniform(rng_, 1.3, 1.7), frame = Uniform(rng_, 0.08, 0.14);
+    const SurfaceTexture frame_paint = Paint(Uniform(rng_, 0.1, 0.95)), glass = Glass(Uniform(rng_, 0.1, 0.22));
+    const int columns = std::max(1, static_cast<int>((width - 1.0) / pitch));
+    const double margin = 0.5 * (width - columns * pitch);
+    for (int floor = 1; floor < storeys; ++floor) {
+      const double sill = ground + (floor - 1) * storey + 0.9;
+      for (int c = 0; c < columns; ++c) {
+        const double mid = a0 + margin + (c + 0.5) * pitch;
+        Window(w, mid - 0.5 * pane_width, sill, mid + 0.5 * pane_width, sill + pane_height, frame, frame_paint, glass);
+      }
+    }
+    // The ground floor: a shop front (a wide window, a door, a sign board, maybe an awning)
+    // or a house door between windows.
+    if (Uniform01(rng_) < 0.6) {
+      const double door = a0 + margin + Uniform(rng_, 0.3, 1.0);
+      Window(w, door, 0.0, door + 1.1, 2.4, 0.1, frame_paint, Glass(0.14));
+      const double shop0 = door + 1.6, shop1 = a1 - margin - 0.3;
+      if (shop1 - shop0 > 1.5) Window(w, shop0, 0.5, shop1, 2.8, 0.12, frame_paint, glass);
+      s_.Rect(w, a0 + margin, 3.0, a1 - margin, 3.6, 0.06, Paint(Uniform(rng_, 0.1, 0.95)));
+      if (Uniform01(rng_) < 0.5 && shop1 - shop0 > 1.5) {
+        // An awning sloping down from the wall: lines of an oblique direction.
+        s_.Add({w.At(shop0, 2.95, 0.08), w.At(shop1, 2.95, 0.08), w.At(shop1, 2.55, 1.3), w.At(shop0, 2.55, 1.3)},
+               w.inward - kUp, Paint(Uniform(rng_, 0.2, 0.8)), kAllEdges, w.At(0.0, 0.0, 0.0), w.along, kUp);
+        surface_back().two_sided = true;
+      }
+    } else {
+      const double door = 0.5 * (a0 + a1) - 0.6;
+      Window(w, door, 0.0, door + 1.2, 2.5, 0.12, frame_paint, Paint(Uniform(rng_, 0.15, 0.45)));
+      for (int c = 0; c < columns; ++c) {
+        const double mid = a0 + margin + (c + 0.5) * pitch;
+        if (std::abs(mid - (door + 0.6)) < 0.5 * pitch + 0.7) continue;
+        Window(w, mid - 0.5 * pane_width, 1.0, mid + 0.5 * pane_width, 1.0 + pane_height, frame, frame_paint, glass);
+      }
+    }
+    return height;
+  }
+
+  // A frame of width `frame` around the pane [a0, a1] x [b0, b1] (the pane 1 cm in front).
+  void Window(const Wall& w, double a0, double b0, double a1, double b1, double frame, const SurfaceTexture& paint,
+              const SurfaceTexture& pane) {
+    const double fb0 = b0 > 0.0 ? b0 - frame : b0;  // a door's frame stands on the sidewalk
+    s_.Rect(w, a0 - frame, fb0, a1 + frame, b1 + frame, 0.03, paint);
+    s_.Rect(w, a0, b0, a1, b1, 0.04, pane);
+  }
+
+  // The side wall at a of the taller of two neighbours, above the lower one's roof, 10 m deep,
+  // facing the lower one.
+  void SideWall(const Wall& w, double a, double b0, double b1, bool left_taller) {
+    const Wall side{w.At(a, 0.0), left_taller ? -w.inward : w.inward, left_taller ? w.along : -w.along};
+    const double d0 = left_taller ? 0.0 : -10.0, d1 = left_taller ? 10.0 : 0.0;
+    s_.Rect(side, d0, b0, d1, b1, 0.0, Plaster(0.5), 0b1110u);
+  }
+
+  Surface& surface_back() { return s_.Last(); }
+
+  SceneBuilder& s_;
+  RandomStream& rng_;
+};
+
+// Lane markings on the road, 2 mm above the asphalt (not in its plane: a coplanar surface would
+// tie in the z-buffer): white paint, the rectangle [x0, x1] x [z0, z1] in world x and z.
+void RoadPaint(SceneBuilder& s, double road_y, double x0, double z0, double x1, double z1) {
+  const double y = road_y - 0.002;
+  s.Add({{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}}, kUp, Flat(0.8), kAllEdges, {0.0, y, 0.0},
+        {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+}
+
+void MakeStreetScene(const StreetSceneConfig& c, RandomStream& rng, std::uint64_t seed, Scene* scene) {
+  SceneBuilder s(&scene->surfaces, seed);
+  StreetBuilder street(&s, &rng);
+  const double road_y = c.camera_height_m, walk_y = road_y - kCurbHeight;
+  const double x0 = -c.lane_offset_m, zc = c.crossing_at_m;  // the two centre lines
+  const double z_back = -30.0, z_far = zc + kFacadeOffset + c.far_length_m;
+  const double x_lo = x0 - c.cross_length_m, x_hi = x0 + c.cross_length_m;
+  const double F = kFacadeOffset, C = kCurbOffset;
+  const auto ground = [&](double y, double xa, double za, double xb, double zb, const SurfaceTexture& texture,
+                          const std::uint64_t* wall_seed) {
+    SurfaceTexture t = texture;
+    if (wall_seed != nullptr) t.seed = *wall_seed;
+    s.Add({{xa, y, za}, {xb, y, za}, {xb, y, zb}, {xa, y, zb}}, kUp, t, 0u, {0.0, y, 0.0}, {1.0, 0.0, 0.0},
+          {0.0, 0.0, 1.0}, wall_seed == nullptr);
+  };
+
+  // The road: five pieces of one asphalt (the arms and the crossing), no lines of their own
+  // (the curbs and the paint make them).
+  const std::uint64_t asphalt_seed = MixSeed(StreamSeed(seed, "asphalt"));
+  ground(road_y, x0 - C, z_back, x0 + C, zc - C, Asphalt(), &asphalt_seed);
+  ground(road_y, x0 - C, zc - C, x0 + C, zc + C, Asphalt(), &asphalt_seed);
+  ground(road_y, x0 - C, zc + C, x0 + C, z_far, Asphalt(), &asphalt_seed);
+  ground(road_y, x_lo, zc - C, x0 - C, zc + C, Asphalt(), &asphalt_seed);
+  ground(road_y, x0 + C, zc - C, x_hi, zc + C, Asphalt(), &asphalt_seed);
+
+  // The four blocks' sidewalks (an L each: the main street's strip runs to its corner) and the
+  // curbs' faces towards the road. sx, sz: the block's side of the main and the cross street.
+  for (const double sx : {-1.0, 1.0}) {
+    for (const double sz : {-1.0, 1.0}) {
+      const double main_z0 = sz < 0 ? z_back : zc + C, main_z1 = sz < 0 ? zc - C : z_far;
+      const double cross_x0 = sx < 0 ? x_lo : x0 + F, cross_x1 = sx < 0 ? x0 - F : x_hi;
+      const double walk_x0 = std::min(x0 + sx * C, x0 + sx * F), walk_x1 = std::max(x0 + sx * C, x0 + sx * F);
+      const double walk_z0 = std::min(zc + sz * C, zc + sz * F), walk_z1 = std::max(zc + sz * C, zc + sz * F);
+      ground(walk_y, walk_x0, main_z0, walk_x1, main_z1, Paint(0.52), nullptr);
+      ground(walk_y, cross_x0, walk_z0, cross_x1, walk_z1, Paint(0.52), nullptr);
+      // The curb faces: vertical, facing the road.
+      const double curb_x = x0 + sx * C, curb_z = zc + sz * C;
+      const double cx0 = sx < 0 ? x_lo : curb_x, cx1 = sx < 0 ? curb_x : x_hi;
+      s.Add({{curb_x, road_y, main_z0}, {curb_x, road_y, main_z1}, {curb_x, walk_y, main_z1}, {curb_x, walk_y, main_z0}},
+            {-sx, 0.0, 0.0}, Paint(0.6), kAllEdges, {curb_x, road_y, 0.0}, {0.0, 0.0, 1.0}, kUp);
+      s.Add({{cx0, road_y, curb_z}, {cx1, road_y, curb_z}, {cx1, walk_y, curb_z}, {cx0, walk_y, curb_z}},
+            {0.0, 0.0, -sz}, Paint(0.6), kAllEdges, {0.0, road_y, curb_z}, {1.0, 0.0, 0.0}, kUp);
+    }
+  }
+
+  // Where a street ends at a row of facades, a step up from the road to the facades' base.
+  for (const double sz : {-1.0, 1.0}) {
+    const double z = sz < 0 ? z_back : z_far, x = sz < 0 ? x_lo : x_hi;
+    s.Add({{x0 - C, road_y, z}, {x0 + C, road_y, z}, {x0 + C, walk_y, z}, {x0 - C, walk_y, z}}, {0.0, 0.0, -sz},
+          Paint(0.6), kAllEdges, {0.0, road_y, z}, {1.0, 0.0, 0.0}, kUp);
+    s.Add({{x, road_y, zc - C}, {x, road_y, zc + C}, {x, walk_y, zc + C}, {x, walk_y, zc - C}}, {-sz, 0.0, 0.0},
+          Paint(0.6), kAllEdges, {x, road_y, 0.0}, {0.0, 0.0, 1.0}, kUp);
+  }
+
+  // Lane markings: dashed centre lines (3 m of every 9 m), the lines between the lanes and the
+  // parking lanes, zebra crossings on the four arms.
+  for (double z = z_back; z + 3.0 < z_far; z += 9.0) {
+    if (z + 3.0 > zc - C - 4.0 && z < zc + C + 4.0) continue;
+    RoadPaint(s, road_y, x0 - 0.075, z, x0 + 0.075, z + 3.0);
+  }
+  for (double x = x0 + C + 5.0; x + 3.0 < x_hi; x += 9.0) RoadPaint(s, road_y, x, zc - 0.075, x + 3.0, zc + 0.075);
+  for (double x = x0 - C - 5.0; x - 3.0 > x_lo; x -= 9.0) RoadPaint(s, road_y, x - 3.0, zc - 0.075, x, zc + 0.075);
+  for (const double sx : {-1.0, 1.0}) {
+    const double x = x0 + sx * kLaneWidth;
+    RoadPaint(s, road_y, x - 0.06, z_back, x + 0.06, zc - C - 4.0);
+    RoadPaint(s, road_y, x - 0.06, zc + C + 4.0, x + 0.06, z_far);
+    const double z = zc + sx * kLaneWidth;
+    RoadPaint(s, road_y, x0 + C + 4.0, z - 0.06, x_hi, z + 0.06);
+    RoadPaint(s, road_y, x_lo, z - 0.06, x0 - C - 4.0, z + 0.06);
+  }
+  for (int stripe = 0; stripe < 10; ++stripe) {
+    const double u = -C + 0.3 + 1.05 * stripe;  // across the arm
+    for (const double side : {-1.0, 1.0}) {
+      const double near = side * (C + 0.5), far = side * (C + 3.5);
+      RoadPaint(s, road_y, x0 + u, zc + std::min(near, far), x0 + u + 0.5, zc + std::max(near, far));
+      RoadPaint(s, road_y, x0 + std::min(near, far), zc + u, x0 + std::max(near, far), zc + u + 0.5);
+    }
+  }
+
+  // The facades, as seen from the street (along: to the right), with what stands in front.
+  const auto wall = [&](double x, double z, const Eigen::Vector3d& along) {
+    return Wall{{x, walk_y, z}, along, along.cross(kUp)};
+  };
+  const Eigen::Vector3d px(1.0, 0.0, 0.0), pz(0.0, 0.0, 1.0);
+  const double main_near = zc - F - z_back, main_far = z_far - (zc + F), cross = c.cross_length_m - F;
+  const std::vector<StreetSide> sides = {
+      {wall(x0 + F, zc - F, -pz), main_near, true, false},  // main street, right, before the crossing
+      {wall(x0 - F, z_back, pz), main_near, false, true},   // main street, left, before the crossing
+      {wall(x0 + F, z_far, -pz), main_far, false, true},    // main street, right, beyond
+      {wall(x0 - F, zc + F, pz), main_far, true, false},    // main street, left, beyond
+      {wall(x_hi, zc - F, -px), cross, false, true},        // cross street, near side, right
+      {wall(x0 - F, zc - F, -px), cross, true, false},      // cross street, near side, left
+      {wall(x0 + F, zc + F, px), cross, true, false},       // cross street, far side, right
+      {wall(x_lo, zc + F, px), cross, false, true},         // cross street, far side, left
+      {wall(x0 - F, z_far, px), 2.0 * F, false, false},     // the main street's far end
+      {wall(x0 + F, z_back, -px), 2.0 * F, false, false},   // its back end
+      {wall(x_hi, zc + F, -pz), 2.0 * F, false, false},     // the cross street's ends
+      {wall(x_lo, zc - F, pz), 2.0 * F, false, false},
+  };
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    street.Facade(sides[i]);
+    if (i < 8) street.StreetFurniture(sides[i]);
+  }
+
+  // Traffic lights at three corners of the crossing (the fourth is the inside of the car
+  // profile's right turn), on the sidewalk 2 m from the corner.
+  const Wall level{{0.0, walk_y, 0.0}, px, pz};  // a = x, b = up from the sidewalk, out = z
+  for (const auto& [sx, sz] : {std::pair{-1.0, -1.0}, std::pair{-1.0, 1.0}, std::pair{1.0, 1.0}}) {
+    const double x = x0 + sx * (C + 1.0), z = zc + sz * (C + 1.0);
+    s.Box(level, x - 0.08, 0.0, x + 0.08, 3.4, z - 0.08, z + 0.08, Paint(0.25), false, true);
+    s.Box(level, x - 0.18, 3.4, x + 0.18, 4.4, z - 0.15, z + 0.15, Flat(0.1));
+  }
+
+  // The sky: one plane 200 m above the road, far wider than the streets (its edges lie below
+  // the roofs, seen from the road), no lines.
+  const double sky_y = road_y - 200.0, reach = 20000.0;
+  s.Add({{-reach, sky_y, -reach}, {reach, sky_y, -reach}, {reach, sky_y, reach}, {-reach, sky_y, reach}}, -kUp,
+        Flat(kSkyAlbedo), 0u, {0.0, sky_y, 0.0}, px, pz);
+}
+
 }  // namespace
 
 Scene MakeScene(const SceneConfig& config, std::uint64_t seed) {
@@ -417,6 +699,7 @@ Scene MakeScene(const SceneConfig& config, std::uint64_t seed) {
       return scene;
     case SceneType::kRoom: MakeRoomScene(config.room, rng, seed, &scene); break;
     case SceneType::kCorridor: MakeCorridorScene(config.corridor, rng, seed, &scene); break;
+    case SceneType::kStreet: MakeStreetScene(config.street, rng, seed, &scene); break;
   }
   scene.lines = LinesFromSurfaces(scene.surfaces);
   // Fisher-Yates with our own index draw (std::shuffle's output is implementation-defined).

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "simulator/motion.h"
 
 namespace slt {
 namespace {
@@ -113,6 +116,63 @@ TEST(Scene, CorridorStaysInsideItsWalls) {
   // Door leaves are set 4 cm, the far window 8 cm into the walls.
   CheckStructured(c, {-0.5 * r.width_m - 0.08, r.camera_height_m - r.height_m, -2.0 - 0.08},
                   {0.5 * r.width_m + 0.08, r.camera_height_m, r.length_m - 2.0 + 0.08});
+}
+
+TEST(Scene, StreetStaysInsideItsStreetsAndHasLinesOfEveryDirection) {
+  SceneConfig c;
+  c.type = SceneType::kStreet;
+  const StreetSceneConfig& r = c.street;
+  const double x0 = -r.lane_offset_m;
+  // Between the facades of the two streets and their end walls (plus what stands out of them),
+  // from the road to the highest roof (4.4 m + 5 storeys of 3.4 m + 1.2 m).
+  CheckStructured(c, {x0 - r.cross_length_m - 0.5, r.camera_height_m - 24.0, -30.5},
+                  {x0 + r.cross_length_m + 0.5, r.camera_height_m, r.crossing_at_m + 8.5 + r.far_length_m + 0.5});
+  const std::vector<Line3d> lines = MakeScene(c, 1).lines;
+  EXPECT_GT(lines.size(), 3000u);
+  int along_x = 0, along_y = 0, along_z = 0, oblique = 0;
+  for (const Line3d& line : lines) {
+    const Eigen::Vector3d d = (line.q - line.p).normalized().cwiseAbs();
+    (d.x() > 1.0 - 1e-9 ? along_x : d.y() > 1.0 - 1e-9 ? along_y : d.z() > 1.0 - 1e-9 ? along_z : oblique) += 1;
+  }
+  EXPECT_GT(along_x, 500);
+  EXPECT_GT(along_y, 500);
+  EXPECT_GT(along_z, 500);
+  EXPECT_GT(oblique, 20);  // awnings
+}
+
+// Distance from x to a convex planar polygon.
+double DistanceToPolygon(const Eigen::Vector3d& x, const Surface& s) {
+  const double height = s.normal.dot(x - s.vertices[0]);
+  const Eigen::Vector3d on_plane = x - height * s.normal;
+  bool inside = true;
+  double edge_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+    const Eigen::Vector3d &a = s.vertices[i], &b = s.vertices[(i + 1) % s.vertices.size()];
+    if ((b - a).cross(on_plane - a).dot(s.normal) < 0.0) inside = false;
+    const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    edge_distance = std::min(edge_distance, (a + t * (b - a) - x).norm());
+  }
+  return inside ? std::abs(height) : edge_distance;
+}
+
+TEST(Scene, TheCarProfileDrivesThroughTheStreetClearOfEverything) {
+  // The default car route in the default street: the camera's centre at every frame keeps
+  // 1.3 m from every surface (a car's half width and more), the road's 1.65 m below aside.
+  SceneConfig c;
+  c.type = SceneType::kStreet;
+  const Scene scene = MakeScene(c, 1);
+  MotionConfig motion;
+  motion.profile = MotionProfile::kCar;
+  const Trajectory t = MakeTrajectory(motion, 200, 10.0, 1);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < t.size(); k += 2) {
+    const Eigen::Vector3d centre = t[k].world_from_cam.translation;
+    for (const Surface& s : scene.surfaces) {
+      if (s.normal.y() < -0.99 && s.vertices[0].y() >= c.street.camera_height_m - 0.01) continue;  // the road
+      nearest = std::min(nearest, DistanceToPolygon(centre, s));
+    }
+  }
+  EXPECT_GT(nearest, 1.3);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // simulate: writes one synthetic stereo line sequence (docs/simulation.md).
 //
-//   simulate [CONFIG | -] --out DIR [--seed N] [--images [--threads N]]
+//   simulate [CONFIG | -] --out DIR [--seed N] [--images [--layout L] [--threads N]]
 //
 // CONFIG is a path, or a bare name found in frontend/configs/ (the rendered scenes of
 // docs/rendering.md: "room_752x480", "paper_640x480.json").
@@ -10,7 +10,9 @@
 // DIR/scene.csv             the scene's 3-D segments (id,x1,y1,z1,x2,y2,z2, world frame, m)
 // DIR/config.resolved.json  the config with every default filled in (and --seed applied)
 // DIR/mav0/...              with --images: the rendered stereo images in EuRoC's ASL layout
-//                           (docs/formats.md, docs/rendering.md)
+//                           (docs/formats.md, docs/rendering.md); for the street scene (or
+//                           --layout kitti) in KITTI odometry's instead: DIR/image_0, image_1,
+//                           calib.txt, times.txt, poses.txt
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
@@ -62,7 +64,11 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed_text, "Base seed (0 .. 2^64-1), replacing the config's 'seed'");
   bool images = false;
   int threads = 0;
-  app.add_flag("--images", images, "Also render the stereo images (DIR/mav0, EuRoC layout)");
+  app.add_flag("--images", images,
+               "Also render the stereo images (DIR/mav0, EuRoC layout; the street: DIR/image_0 ..., KITTI layout)");
+  std::string layout = "auto";
+  app.add_option("--layout", layout, "Layout of the images: auto (KITTI for the street, else EuRoC), euroc, kitti")
+      ->check(CLI::IsMember({"auto", "euroc", "kitti"}));
   app.add_option("--threads", threads, "Render threads (default: all cores); the images do not depend on it")
       ->check(CLI::Range(0, 4096));
   std::string scenes;
@@ -91,8 +97,12 @@ int main(int argc, char** argv) {
 
     const std::filesystem::path dir(out_dir);
     CreateDirectories(out_dir);
-    const std::vector<std::string> outputs = {(dir / "seq.json").string(), (dir / "gt.tum").string(),
-                                              (dir / "scene.csv").string(), (dir / "config.resolved.json").string()};
+    const bool kitti = layout == "kitti" || (layout == "auto" && config.scene.type == SceneType::kStreet);
+    std::vector<std::string> outputs = {(dir / "seq.json").string(), (dir / "gt.tum").string(),
+                                        (dir / "scene.csv").string(), (dir / "config.resolved.json").string()};
+    if (images && kitti) {
+      for (const char* file : {"calib.txt", "times.txt", "poses.txt"}) outputs.push_back((dir / file).string());
+    }
     for (const std::string& output : outputs) RefuseOutputThatIsInput("--out", output, {config_path});
     // All outputs or none: a failure after the first file removes the files this run writes.
     try {
@@ -105,9 +115,14 @@ int main(int argc, char** argv) {
         const int workers = threads > 0 ? threads : std::max(1, CpuCores());
         // The progress bar on a terminal only: a log gets the closing line, not a line per frame.
         ProgressBar bar;
-        WriteEurocSequence(out_dir, result, config, workers, [&](int done, int total) {
+        const auto update = [&](int done, int total) {
           bar.Update(static_cast<size_t>(done), static_cast<size_t>(total), " frames rendered");
-        });
+        };
+        if (kitti) {
+          WriteKittiSequence(out_dir, result, config, workers, update);
+        } else {
+          WriteEurocSequence(out_dir, result, config, workers, update);
+        }
       }
       WriteJsonFile(outputs[3], SimulationConfigToJson(config));
     } catch (...) {

@@ -16,7 +16,17 @@ namespace {
 
 const EnumNames<SceneType>& SceneTypes() {
   static const EnumNames<SceneType> names = {
-      {SceneType::kPaper, "paper"}, {SceneType::kRoom, "room"}, {SceneType::kCorridor, "corridor"}};
+      {SceneType::kPaper, "paper"},
+      {SceneType::kRoom, "room"},
+      {SceneType::kCorridor, "corridor"},
+      {SceneType::kStreet, "street"}};
+  return names;
+}
+const EnumNames<MotionProfile>& MotionProfiles() {
+  static const EnumNames<MotionProfile> names = {{MotionProfile::kNone, "none"},
+                                                 {MotionProfile::kHandheld, "handheld"},
+                                                 {MotionProfile::kMav, "mav"},
+                                                 {MotionProfile::kCar, "car"}};
   return names;
 }
 const EnumNames<MotionType>& MotionTypes() {
@@ -129,13 +139,31 @@ const OptionSchema<CorridorSceneConfig>& CorridorSceneSchema() {
   return schema;
 }
 
+// The buildings, crossing and car lanes have fixed sizes: the cross street needs room for the
+// car's turn, and the main street's first block room for its buildings before the crossing.
+const OptionSchema<StreetSceneConfig>& StreetSceneSchema() {
+  using C = StreetSceneConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("crossing_at_m", &C::crossing_at_m, InRange(20.0, kMaxSceneSizeM),
+                 "the cross street's centre line ahead of the start (m)")
+          .Field("cross_length_m", &C::cross_length_m, InRange(20.0, kMaxSceneSizeM),
+                 "the cross street from the crossing to each end (m)")
+          .Field("far_length_m", &C::far_length_m, InRange(20.0, kMaxSceneSizeM),
+                 "the main street beyond the crossing (m)")
+          .Field("lane_offset_m", &C::lane_offset_m, InRange(-5.0, 5.0), "camera right of the centre line (m)")
+          .Field("camera_height_m", &C::camera_height_m, InRange(0.3, 20.0), "camera above the road (m)");
+  return schema;
+}
+
 const OptionSchema<SceneConfig>& SceneSchema() {
   using C = SceneConfig;
   static const OptionSchema<C> schema = OptionSchema<C>()
                                             .Field("type", &C::type, SceneTypes(), "which scene")
                                             .Child("paper", &C::paper, PaperSceneSchema(), "the paper's random segments")
                                             .Child("room", &C::room, RoomSceneSchema(), "a furnished room")
-                                            .Child("corridor", &C::corridor, CorridorSceneSchema(), "a long corridor");
+                                            .Child("corridor", &C::corridor, CorridorSceneSchema(), "a long corridor")
+                                            .Child("street", &C::street, StreetSceneSchema(), "a town crossing");
   return schema;
 }
 
@@ -181,14 +209,76 @@ const OptionSchema<ForwardMotionConfig>& ForwardMotionSchema() {
   return schema;
 }
 
+const OptionSchema<HandheldMotionConfig>& HandheldMotionSchema() {
+  using C = HandheldMotionConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("speed_mps", &C::speed_mps, InRange(0.0, 100.0), "root mean square speed (m/s)")
+          .Field("rate_dps", &C::rate_dps, InRange(0.0, 1000.0), "root mean square angular rate (deg/s)")
+          .Field("period_min_s", &C::period_min_s, InRange(1e-3, 1e6), "shortest sway period (s)")
+          .Field("period_max_s", &C::period_max_s, AnyNumber(), "longest sway period (s)")
+          .Check("period_max_s", [](const C& c) {
+            return c.period_max_s >= c.period_min_s && c.period_max_s <= 1e6
+                       ? ""
+                       : "must be >= motion.handheld.period_min_s and <= 1e6";
+          });
+  return schema;
+}
+
+const OptionSchema<MavMotionConfig>& MavMotionSchema() {
+  using C = MavMotionConfig;
+  static const OptionSchema<C> schema =
+      Vector3Field(OptionSchema<C>()
+                       .Field("max_speed_mps", &C::max_speed_mps, InRange(1e-3, 100.0), "peak speed (m/s)")
+                       .Field("max_yaw_rate_dps", &C::max_yaw_rate_dps, InRange(1e-3, 2000.0), "peak yaw rate (deg/s)")
+                       .Field("max_turn_deg", &C::max_turn_deg, InRange(0.0, 360.0), "largest turn of one manoeuvre (deg)")
+                       .Field("min_segment_s", &C::min_segment_s, InRange(1e-2, 1e4), "shortest manoeuvre (s)")
+                       .Field("hover_probability", &C::hover_probability, InRange(0.0, 1.0),
+                              "probability that a manoeuvre is a hover"),
+                   "extent_m", &C::extent_m, "half-size of the box the centre stays in, around the start (m)")
+          .Field("hover_jitter_m", &C::hover_jitter_m, InRange(0.0, 1.0), "shiver of the centre (m)")
+          .Field("hover_jitter_deg", &C::hover_jitter_deg, InRange(0.0, 10.0), "shiver of the attitude (deg)")
+          .Check("extent_m", [](const C& c) {
+            return c.extent_m.allFinite() && !(c.extent_m.array() < 0.0).any() && c.extent_m.maxCoeff() <= kMaxSceneSizeM
+                       ? ""
+                       : "must be finite, each in [0, 1000]";
+          });
+  return schema;
+}
+
+const OptionSchema<CarMotionConfig>& CarMotionSchema() {
+  using C = CarMotionConfig;
+  static const OptionSchema<C> schema =
+      OptionSchema<C>()
+          .Field("cruise_speed_mps", &C::cruise_speed_mps, InRange(0.1, 100.0), "speed on the straights (m/s)")
+          .Field("turn_speed_mps", &C::turn_speed_mps, InRange(0.1, 100.0), "speed in the turn (m/s)")
+          .Field("straight_m", &C::straight_m, InRange(0.0, 1e5), "straight before the turn (m)")
+          .Field("turn_radius_m", &C::turn_radius_m, InRange(1.0, 1e4), "radius of the turn (m)")
+          .Field("turn_deg", &C::turn_deg, InRange(-360.0, 360.0), "the turn, positive to the right (deg)")
+          .Field("brake_mps2", &C::brake_mps2, InRange(0.01, 20.0), "braking before the turn (m/s^2)")
+          .Field("accelerate_mps2", &C::accelerate_mps2, InRange(0.01, 20.0), "acceleration after it (m/s^2)")
+          .Field("pitch_per_mps2_deg", &C::pitch_per_mps2_deg, InRange(0.0, 10.0), "pitch per m/s^2 braking (deg)")
+          .Field("roll_per_mps2_deg", &C::roll_per_mps2_deg, InRange(0.0, 10.0), "roll per m/s^2 lateral (deg)")
+          .Field("suspension_deg", &C::suspension_deg, InRange(0.0, 10.0), "suspension shiver, pitch and roll (deg)")
+          .Field("suspension_m", &C::suspension_m, InRange(0.0, 1.0), "suspension shiver, up and down (m)")
+          .Check("turn_speed_mps", [](const C& c) {
+            return c.turn_speed_mps <= c.cruise_speed_mps ? "" : "must be <= motion.car.cruise_speed_mps";
+          });
+  return schema;
+}
+
 const OptionSchema<MotionConfig>& MotionSchema() {
   using C = MotionConfig;
   static const OptionSchema<C> schema =
       OptionSchema<C>()
           .Field("type", &C::type, MotionTypes(), "which motion (default: the scene's)")
+          .Field("profile", &C::profile, MotionProfiles(), "a real camera's motion, replacing type (none: type)")
           .Child("sinusoid", &C::sinusoid, SinusoidMotionSchema(), "paper and pure_rotation")
           .Child("loop", &C::loop, LoopMotionSchema(), "a closed loop")
-          .Child("forward", &C::forward, ForwardMotionSchema(), "forward with wobble");
+          .Child("forward", &C::forward, ForwardMotionSchema(), "forward with wobble")
+          .Child("handheld", &C::handheld, HandheldMotionSchema(), "profile handheld: slow sway")
+          .Child("mav", &C::mav, MavMotionSchema(), "profile mav: a drone's manoeuvres")
+          .Child("car", &C::car, CarMotionSchema(), "profile car: a drive with a turn, at speed from the start");
   return schema;
 }
 
@@ -211,6 +301,12 @@ const OptionSchema<ImageConfig>& ImageSchema() {
       OptionSchema<C>()
           .Field("exposure_variation", &C::exposure_variation, InRange(0.0, 1.0, "[)"),
                  "per-frame gain 1 + this * a slow wave in [-1, 1]")
+          .Field("auto_exposure_step", &C::auto_exposure_step, InRange(0.0, 0.5),
+                 "auto-exposure: largest gain step, as a fraction (0 = off)")
+          .Field("auto_exposure_interval_frames", &C::auto_exposure_interval_frames, InRange(1.0, 1e6),
+                 "mean frames between auto-exposure steps")
+          .Field("auto_exposure_ramp_frames", &C::auto_exposure_ramp_frames, InRange(1, 1000),
+                 "frames over which a step is reached")
           .Field("vignetting", &C::vignetting, InRange(0.0, 1.0, "[)"), "brightness lost in the corners (fraction)")
           .Field("defocus_blur_px", &C::defocus_blur_px, FiniteAtLeast(0.0), "Gaussian blur sigma (px, 0 = sharp)")
           .Field("motion_blur_samples", &C::motion_blur_samples, InRange(1, 64),
@@ -280,6 +376,18 @@ const OptionSchema<SimulationConfig>& SimulationSchema() {
           .Field("seed", &C::seed, AnyNumber(), "base seed of every stream")
           .Child("seeds", &C::seeds, SeedOverridesSchema(), "per-stream base seeds")
           .Field("frames", &C::frames, InRange(1, kMaxFrames), "frames")
+          .Field("focal_error_px", &C::focal_error_px, AnyNumber().Finite(), "added to the tracker's focal lengths")
+          .Field("max_features", &C::max_features, AtLeast(0).Note("0 = all lines"), "lines with id < this only")
+          .Child("scene", &C::scene, SceneSchema(), "the 3-D lines")
+          // The scene-dependent defaults: each scene with the rig, motion and observation model
+          // it is for; the keys read after this replace them.
+          .OnRead([](C* c) {
+            c->rig = DefaultRigFor(c->scene.type);
+            c->frame_rate = DefaultFrameRateFor(c->scene.type);
+            c->motion.type = DefaultMotionFor(c->scene.type);
+            c->observation.clip_to_image = c->scene.type != SceneType::kPaper;
+            c->observation.occlusion = c->scene.type != SceneType::kPaper;
+          })
           // Frame times k / frame_rate stay well inside the trajectory files' range.
           .Field("frame_rate", &C::frame_rate, InRange(1e-3, 1e4), "Hz")
           .Custom(
@@ -297,15 +405,6 @@ const OptionSchema<SimulationConfig>& SimulationSchema() {
                 }
                 return std::string();
               })
-          .Field("focal_error_px", &C::focal_error_px, AnyNumber().Finite(), "added to the tracker's focal lengths")
-          .Field("max_features", &C::max_features, AtLeast(0).Note("0 = all lines"), "lines with id < this only")
-          .Child("scene", &C::scene, SceneSchema(), "the 3-D lines")
-          // The scene-dependent defaults: each scene with the motion and observation model it is for.
-          .OnRead([](C* c) {
-            c->motion.type = DefaultMotionFor(c->scene.type);
-            c->observation.clip_to_image = c->scene.type != SceneType::kPaper;
-            c->observation.occlusion = c->scene.type != SceneType::kPaper;
-          })
           .Child("motion", &C::motion, MotionSchema(), "the camera's motion")
           .Child("observation", &C::observation, ObservationSchema(), "what is observed")
           .Child("noise", &C::noise, NoiseSchema(), "endpoint noise")
@@ -313,7 +412,9 @@ const OptionSchema<SimulationConfig>& SimulationSchema() {
           .Child("images", &C::images, ImageSchema(), "rendered images (simulate --images, docs/rendering.md)")
           .Check("frames",
                  [](const C& c) {
-                   return c.motion.type == MotionType::kLoop && c.frames < 2 ? "a loop needs at least 2 frames" : "";
+                   return c.motion.type == MotionType::kLoop && c.motion.profile == MotionProfile::kNone && c.frames < 2
+                              ? "a loop needs at least 2 frames"
+                              : "";
                  })
           .Check("focal_error_px",
                  [](const C& c) {
@@ -336,6 +437,7 @@ const OptionSchema<SimulationConfig>& SimulationSchema() {
 
 const char* SceneTypeName(SceneType type) { return EnumName(SceneTypes(), type); }
 const char* MotionTypeName(MotionType type) { return EnumName(MotionTypes(), type); }
+const char* MotionProfileName(MotionProfile profile) { return EnumName(MotionProfiles(), profile); }
 const char* NoiseModelName(NoiseModel model) { return EnumName(NoiseModels(), model); }
 const char* EndpointModelName(EndpointModel model) { return EnumName(EndpointModels(), model); }
 
@@ -343,10 +445,28 @@ MotionType DefaultMotionFor(SceneType type) {
   switch (type) {
     case SceneType::kPaper: return MotionType::kPaper;
     case SceneType::kRoom: return MotionType::kLoop;
-    case SceneType::kCorridor: return MotionType::kForward;
+    case SceneType::kCorridor:
+    case SceneType::kStreet: return MotionType::kForward;
   }
   return MotionType::kPaper;
 }
+
+StereoRig DefaultRigFor(SceneType type) {
+  StereoRig rig;
+  if (type != SceneType::kStreet) return rig;
+  // KITTI odometry's rectified grey pair (calib.txt of sequences 00-02: P0, P1).
+  rig.width = 1241;
+  rig.height = 376;
+  for (PinholeCamera* camera : {&rig.left, &rig.right}) {
+    camera->fx = camera->fy = 718.856;
+    camera->cx = 607.1928;
+    camera->cy = 185.2157;
+  }
+  rig.right_from_left = Rigid3d(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-386.1448 / 718.856, 0.0, 0.0));
+  return rig;
+}
+
+double DefaultFrameRateFor(SceneType type) { return type == SceneType::kStreet ? 10.0 : 30.0; }
 
 StereoRig SimulationConfig::TrackerRig() const {
   StereoRig tracker_rig = rig;

@@ -15,20 +15,30 @@
 
 namespace slt {
 
-enum class SceneType { kPaper, kRoom, kCorridor };
+enum class SceneType { kPaper, kRoom, kCorridor, kStreet };
 enum class MotionType { kPaper, kLoop, kForward, kStatic, kPureRotation };
+// Motions made like a real camera's (docs/simulation.md, "Motion profiles"); kNone: motion.type.
+enum class MotionProfile { kNone, kHandheld, kMav, kCar };
 enum class NoiseModel { kUniform, kGaussian };
 enum class EndpointModel { kFixed, kSliding };
 
 // The names used in JSON ("paper", "room", ...).
 const char* SceneTypeName(SceneType type);
 const char* MotionTypeName(MotionType type);
+const char* MotionProfileName(MotionProfile profile);
 const char* NoiseModelName(NoiseModel model);
 const char* EndpointModelName(EndpointModel model);
 
 // The motion a scene is meant for: what motion.type defaults to in a JSON config that does not
-// set it (paper -> paper, room -> loop, corridor -> forward).
+// set it (paper -> paper, room -> loop, corridor -> forward, street -> forward; the street is
+// meant for motion.profile "car").
 MotionType DefaultMotionFor(SceneType type);
+
+// The rig and frame rate a scene is rendered with when a JSON config does not set them: the
+// street's is KITTI's grey pair (1241 x 376, f = 718.856 px, baseline 0.537 m, 10 Hz; Geiger et
+// al., CVPR 2012), the other scenes' the paper's (StereoRig's defaults, 30 Hz).
+StereoRig DefaultRigFor(SceneType type);
+double DefaultFrameRateFor(SceneType type);
 
 // scene.paper: N independent random segments with midpoints uniform in a box.
 struct PaperSceneConfig {
@@ -64,11 +74,28 @@ struct CorridorSceneConfig {
   double camera_height_m = 1.5;
 };
 
+// scene.street: a town crossing. The main street runs along +z from behind the camera; the
+// camera starts in its right lane (lane_offset_m right of the centre line) camera_height_m above
+// the road, looking along it. A cross street meets it at right angles crossing_at_m ahead (its
+// centre line) and runs main_length_m to both sides; the main street runs on
+// beyond the crossing for far_length_m. Both carry two lanes, parking lanes, curbs and
+// sidewalks between facades of buildings (storeys, windows, doors, shop fronts), with lamp
+// posts, signs and parked cars, under a bright sky. With motion.profile "car" at its defaults
+// the camera turns right into the cross street's right lane (docs/simulation.md).
+struct StreetSceneConfig {
+  double crossing_at_m = 50.0;    // z of the cross street's centre line
+  double cross_length_m = 250.0;  // the cross street, from the crossing to each end
+  double far_length_m = 60.0;     // the main street beyond the crossing
+  double lane_offset_m = 1.75;    // the camera right of the centre line (half a lane)
+  double camera_height_m = 1.65;  // above the road (KITTI's camera)
+};
+
 struct SceneConfig {
   SceneType type = SceneType::kPaper;
   PaperSceneConfig paper;
   RoomSceneConfig room;
   CorridorSceneConfig corridor;
+  StreetSceneConfig street;
 };
 
 // motion.sinusoid ("paper" and "pure_rotation"): each twist component of the per-frame
@@ -102,11 +129,68 @@ struct ForwardMotionConfig {
   double wobble_period_frames = 60.0;
 };
 
+// motion.handheld: a hand-held rig moved slowly (the paper's real runs, Sec. 5.2): the centre
+// and the yaw, pitch and roll sway as sums of slow sinusoids (periods drawn in
+// [period_min_s, period_max_s]) started at zero, scaled so that the root mean square speed is
+// speed_mps and the root mean square angular rate rate_dps (at 30 Hz: about 1 mm and 0.1 deg per
+// frame).
+struct HandheldMotionConfig {
+  double speed_mps = 0.03;
+  double rate_dps = 3.0;
+  double period_min_s = 8.0;
+  double period_max_s = 30.0;
+};
+
+// motion.mav: a micro aerial vehicle indoors (EuRoC-like): from hover at the start pose, a
+// random sequence of manoeuvres, each a minimum-jerk move of the centre (to a point within
+// +-extent_m of the start, heights included: climbs and descents) and of the yaw (turns of up to
+// max_turn_deg), or a hover; each lasts long enough that the peak speed stays within
+// max_speed_mps and the peak yaw rate within max_yaw_rate_dps, at least min_segment_s. The body
+// tilts into its acceleration as a quadrotor does (pitch and roll = acceleration / g) and
+// shivers by hover_jitter_m and hover_jitter_deg.
+struct MavMotionConfig {
+  double max_speed_mps = 1.0;
+  double max_yaw_rate_dps = 90.0;
+  double max_turn_deg = 180.0;
+  Eigen::Vector3d extent_m{1.2, 0.5, 1.2};
+  double min_segment_s = 1.0;
+  double hover_probability = 0.15;
+  double hover_jitter_m = 0.005;
+  double hover_jitter_deg = 0.3;
+};
+
+// motion.car: a car on a road, already at speed on the first frame: cruise_speed_mps along +z
+// for straight_m, a circular turn of turn_deg (positive: to the right) with radius
+// turn_radius_m at turn_speed_mps, then straight on. It brakes at brake_mps2 to reach the turn
+// speed where the turn begins and accelerates at accelerate_mps2 after it. The body pitches by
+// pitch_per_mps2_deg per m/s^2 of braking (nose down) and rolls by roll_per_mps2_deg per m/s^2
+// of lateral acceleration (outwards), plus a suspension shiver of suspension_deg (periods
+// 0.5-2 s) and suspension_m up and down. At the defaults the camera turns right into the street
+// scene's cross street (scene.street at its defaults).
+struct CarMotionConfig {
+  double cruise_speed_mps = 12.0;
+  double turn_speed_mps = 8.5;
+  double straight_m = 31.25;  // street: crossing_at_m - lane_offset_m - turn_radius_m
+  double turn_radius_m = 17.0;
+  double turn_deg = 90.0;
+  double brake_mps2 = 2.0;
+  double accelerate_mps2 = 1.5;
+  double pitch_per_mps2_deg = 0.1;
+  double roll_per_mps2_deg = 0.1;
+  double suspension_deg = 0.15;
+  double suspension_m = 0.01;
+};
+
 struct MotionConfig {
   MotionType type = MotionType::kPaper;
+  // When not "none", the profile's motion replaces `type`'s.
+  MotionProfile profile = MotionProfile::kNone;
   SinusoidMotionConfig sinusoid;
   LoopMotionConfig loop;
   ForwardMotionConfig forward;
+  HandheldMotionConfig handheld;
+  MavMotionConfig mav;
+  CarMotionConfig car;
 };
 
 struct ObservationConfig {
@@ -146,6 +230,12 @@ struct OutlierConfig {
 struct ImageConfig {
   // Image formation, in the order applied: exposure (gain), vignetting, defocus blur, noise.
   double exposure_variation = 0.05;  // per-frame gain 1 + this * a smooth random wave in [-1, 1]
+  // Auto-exposure: every auto_exposure_interval_frames (drawn in [0.5, 1.5] times it) the gain
+  // steps by a factor drawn in [1 - auto_exposure_step, 1 + auto_exposure_step], reached over
+  // auto_exposure_ramp_frames frames (linear). 0 = off. Both cameras share it.
+  double auto_exposure_step = 0.0;
+  double auto_exposure_interval_frames = 15.0;
+  int auto_exposure_ramp_frames = 3;
   double vignetting = 0.2;           // fraction of the brightness lost at the image corners
   double defocus_blur_px = 0.5;      // standard deviation of a Gaussian blur, px (0 = sharp)
   int motion_blur_samples = 1;       // renders averaged over the exposure (1 = no motion blur)

@@ -64,14 +64,19 @@ TEST(SimulationConfig, EveryFieldRoundTrips) {
   c.scene.paper = {7, 0.2, 0.4, {0.1, 0.2, 1.0}, {1.0, 2.0, 3.0}, 0.25};
   c.scene.room = {6.0, 7.0, 3.0, 1.6};
   c.scene.corridor = {2.5, 2.8, 40.0, 1.7};
+  c.scene.street = {60.0, 120.0, 40.0, -1.5, 1.2};
   c.motion.type = MotionType::kPureRotation;
+  c.motion.profile = MotionProfile::kMav;
+  c.motion.handheld = {0.05, 4.0, 5.0, 20.0};
+  c.motion.mav = {1.5, 60.0, 120.0, {1.0, 0.3, 0.8}, 2.0, 0.3, 0.01, 0.5};
+  c.motion.car = {10.0, 7.0, 30.0, 15.0, -90.0, 1.5, 1.0, 0.2, 0.3, 0.2, 0.02};
   c.motion.sinusoid = {0.5, 0.002, 10.0, 30.0};
   c.motion.loop = {0.5, 0.6, 10.0, 0.05, 2.0};
   c.motion.forward = {0.05, 0.01, 0.5, 40.0};
   c.observation = {true, 20.0, 0.1, true};
   c.noise = {NoiseModel::kGaussian, 1.5, EndpointModel::kSliding, 0.1};
   c.outliers.rate = 0.05;
-  c.images = {0.1, 0.3, 1.0, 4, 0.8, 3.0, 0.1, {-0.2, 0.05, 0.001, -0.002}};
+  c.images = {0.1, 0.2, 10.0, 4, 0.3, 1.0, 4, 0.8, 3.0, 0.1, {-0.2, 0.05, 0.001, -0.002}};
   const nlohmann::json j = SimulationConfigToJson(c);
   EXPECT_EQ(j["seeds"]["noise"], 7);
   EXPECT_TRUE(j["seeds"]["scene"].is_null());
@@ -135,7 +140,7 @@ TEST(SimulationConfig, ErrorsNameFileAndKey) {
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_px": -1}})"),
             "sim.json: key 'noise.endpoint_px': must be a finite number >= 0");
   EXPECT_EQ(ConfigErrorOf(R"({"scene": {"type": "forest"}})"),
-            "sim.json: key 'scene.type': must be \"paper\", \"room\" or \"corridor\"");
+            "sim.json: key 'scene.type': must be \"paper\", \"room\", \"corridor\" or \"street\"");
   EXPECT_EQ(ConfigErrorOf(R"({"noise": {"endpoint_pix": 1}})"), "sim.json: key 'noise.endpoint_pix': unknown key");
   EXPECT_EQ(ConfigErrorOf(R"({"nosie": {}})"), "sim.json: key 'nosie': unknown key");
   EXPECT_EQ(ConfigErrorOf(R"({"frames": 2.5})"), "sim.json: key 'frames': expected an integer, got 2.5");

@@ -3,7 +3,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <unordered_map>
+
+#include "common/random.h"
 
 namespace slt {
 namespace {
@@ -16,6 +20,11 @@ constexpr double kMergeTolerance = 1e-9;
 // its plane is not hidden by it.
 constexpr double kDepthMargin = 1e-6;
 constexpr double kInsideMargin = 1e-9;
+// The grid of LinesFromSurfaces (m): far coarser than the merge tolerance, far finer than the
+// spacing of distinct parallel lines that share a foot point's neighbourhood.
+constexpr double kFootCell = 0.01;
+// Polygons per leaf of Occluders' sphere hierarchy.
+constexpr int kLeafSize = 8;
 
 struct MergedLine {
   Eigen::Vector3d p, q;  // the extreme points along the direction
@@ -87,35 +96,73 @@ Surface MakeSurface(std::vector<Eigen::Vector3d> vertices, const Eigen::Vector3d
 }
 
 std::vector<Line3d> LinesFromSurfaces(const std::vector<Surface>& surfaces) {
+  // Collinear edges have (within rounding) the same foot point, the point of their line nearest
+  // the origin: lines are found by the cells of a 1 cm grid around it (the 27 cells about an
+  // edge's own), not by comparing every edge with every line. The merges are those of a scan
+  // over all lines in creation order (the first line an edge merges with takes it; a grown line
+  // absorbs the first line it now touches, again until none), so the output does not depend on
+  // the grid.
   std::vector<MergedLine> lines;
+  std::vector<bool> alive;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
+  const auto cell_of = [](const Eigen::Vector3d& x, const Eigen::Vector3d& direction) {
+    const Eigen::Vector3d foot = x - x.dot(direction) * direction;
+    return Eigen::Vector3d((foot / kFootCell).array().floor());
+  };
+  const auto key = [](const Eigen::Vector3d& cell) {
+    std::uint64_t k = 0;
+    for (int i = 0; i < 3; ++i) k = MixSeed(k ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(cell[i])));
+    return k;
+  };
+  std::vector<std::size_t> candidates;
   for (const Surface& surface : surfaces) {
     const std::size_t n = surface.vertices.size();
     for (std::size_t i = 0; i < n; ++i) {
       if (!(surface.line_edges >> i & 1u)) continue;
       const Eigen::Vector3d &x = surface.vertices[i], &y = surface.vertices[(i + 1) % n];
+      const Eigen::Vector3d cell = cell_of(x, (y - x).normalized());
+      candidates.clear();
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dz = -1; dz <= 1; ++dz) {
+            const auto found = cells.find(key(cell + Eigen::Vector3d(dx, dy, dz)));
+            if (found != cells.end()) candidates.insert(candidates.end(), found->second.begin(), found->second.end());
+          }
+        }
+      }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
       std::size_t merged_into = lines.size();
-      for (std::size_t k = 0; k < lines.size() && merged_into == lines.size(); ++k) {
-        if (TryMerge(&lines[k], x, y)) merged_into = k;
+      for (const std::size_t k : candidates) {
+        if (alive[k] && TryMerge(&lines[k], x, y)) {
+          merged_into = k;
+          break;
+        }
       }
       if (merged_into == lines.size()) {
+        cells[key(cell)].push_back(lines.size());
         lines.push_back({x, y, (y - x).normalized()});
+        alive.push_back(true);
         continue;
       }
       // The longer line may now touch another one: absorb those too.
-      for (std::size_t k = 0; k < lines.size();) {
-        if (k != merged_into && TryMerge(&lines[merged_into], lines[k].p, lines[k].q)) {
-          lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(k));
-          if (k < merged_into) --merged_into;
-          k = 0;
-        } else {
-          ++k;
+      for (bool absorbed = true; absorbed;) {
+        absorbed = false;
+        for (const std::size_t k : candidates) {
+          if (k != merged_into && alive[k] && TryMerge(&lines[merged_into], lines[k].p, lines[k].q)) {
+            alive[k] = false;
+            absorbed = true;
+            break;
+          }
         }
       }
     }
   }
   std::vector<Line3d> out;
   out.reserve(lines.size());
-  for (const MergedLine& line : lines) out.push_back({line.p, line.q});
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (alive[k]) out.push_back({lines[k].p, lines[k].q});
+  }
   return out;
 }
 
@@ -139,6 +186,85 @@ Occluders::Occluders(const std::vector<Surface>& surfaces) {
     }
     polygons_.push_back(p);
   }
+  if (!polygons_.empty()) {
+    nodes_.emplace_back();
+    Build(0, 0, static_cast<int>(polygons_.size()));
+  }
+}
+
+void Occluders::Build(int index, int first, int count) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  Eigen::Vector3d centre_lo = lo, centre_hi = hi;
+  for (int i = first; i < first + count; ++i) {
+    const Polygon& p = polygons_[i];
+    lo = lo.cwiseMin(p.centre - Eigen::Vector3d::Constant(p.radius));
+    hi = hi.cwiseMax(p.centre + Eigen::Vector3d::Constant(p.radius));
+    centre_lo = centre_lo.cwiseMin(p.centre);
+    centre_hi = centre_hi.cwiseMax(p.centre);
+  }
+  Node node;
+  node.centre = 0.5 * (lo + hi);
+  node.radius = 0.0;
+  for (int i = first; i < first + count; ++i) {
+    node.radius = std::max(node.radius, (polygons_[i].centre - node.centre).norm() + polygons_[i].radius);
+  }
+  node.first = first;
+  node.count = count;
+  if (count <= kLeafSize) {
+    nodes_[index] = node;
+    return;
+  }
+  int axis = 0;
+  (centre_hi - centre_lo).maxCoeff(&axis);
+  const int half = count / 2;
+  // Ties broken by the polygon's place in the scene, so the split does not depend on the
+  // standard library's nth_element.
+  std::nth_element(polygons_.begin() + first, polygons_.begin() + first + half, polygons_.begin() + first + count,
+                   [axis](const Polygon& a, const Polygon& b) {
+                     return a.centre[axis] < b.centre[axis] ||
+                            (a.centre[axis] == b.centre[axis] && a.first_edge < b.first_edge);
+                   });
+  node.first = static_cast<int>(nodes_.size());
+  node.count = 0;
+  nodes_[index] = node;
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  Build(node.first, first, half);
+  Build(node.first + 1, first + half, count - half);
+}
+
+void Occluders::HiddenParts(const Polygon& poly, const Eigen::Vector3d& eye, const Eigen::Vector3d& ea,
+                            const Eigen::Vector3d& ab, std::vector<Eigen::Vector2d>* hidden) const {
+  // The sight line to X(s) is eye + t (ea + s ab), t in (0, 1); it meets the plane at
+  // t = h / D(s) with D(s) = D0 + s D1 linear in s.
+  const double h = poly.offset - poly.normal.dot(eye);
+  if (h == 0.0) return;  // the eye in the plane: the polygon is seen edge-on
+  const double d0 = poly.normal.dot(ea), d1 = poly.normal.dot(ab);
+  double cuts[3] = {0.0, 1.0, 1.0};
+  int pieces = 1;
+  if (d1 != 0.0) {
+    const double root = -d0 / d1;
+    if (root > 0.0 && root < 1.0) {
+      cuts[1] = root;
+      pieces = 2;
+    }
+  }
+  for (int k = 0; k < pieces; ++k) {
+    double lo = cuts[k], hi = cuts[k + 1];
+    const double d_mid = d0 + 0.5 * (lo + hi) * d1;
+    if (d_mid == 0.0) continue;
+    const double sigma = d_mid > 0.0 ? 1.0 : -1.0;
+    if (sigma * h <= 0.0) continue;  // the plane is behind the eye on this piece
+    // In front of X: h / D < 1 - margin.
+    Restrict(sigma * (h - (1.0 - kDepthMargin) * d0), -sigma * (1.0 - kDepthMargin) * d1, &lo, &hi);
+    // Inside every edge: m . Y <= c - margin, multiplied by D (sign sigma).
+    for (int e = poly.first_edge; e < poly.first_edge + poly.edge_count && lo < hi; ++e) {
+      const EdgePlane& edge = edges_[e];
+      const double g = edge.m.dot(eye) - edge.c + kInsideMargin;
+      Restrict(sigma * (g * d0 + h * edge.m.dot(ea)), sigma * (g * d1 + h * edge.m.dot(ab)), &lo, &hi);
+    }
+    if (lo < hi) hidden->emplace_back(lo, hi);
+  }
 }
 
 void Occluders::VisibleParts(const Eigen::Vector3d& eye, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -161,42 +287,27 @@ void Occluders::VisibleParts(const Eigen::Vector3d& eye, const Eigen::Vector3d& 
     if (side_b.dot(ea) < 0.0) side_b = -side_b;
   }
   const double reach = std::max(ea.norm(), eb.norm());
-  for (const Polygon& poly : polygons_) {
-    const Eigen::Vector3d c = poly.centre - eye;
-    if (c.norm() - poly.radius > reach) continue;
-    if (!flat && (std::abs(normal.dot(c)) > poly.radius || side_a.dot(c) < -poly.radius ||
-                  side_b.dot(c) < -poly.radius)) {
+  // A sphere that cannot meet the triangle (eye, a, b): beyond the farther endpoint, off its
+  // plane, or outside the wedge between the sight lines.
+  const auto culled = [&](const Eigen::Vector3d& centre, double radius) {
+    const Eigen::Vector3d c = centre - eye;
+    if (c.norm() - radius > reach) return true;
+    return !flat && (std::abs(normal.dot(c)) > radius || side_a.dot(c) < -radius || side_b.dot(c) < -radius);
+  };
+  int stack[64];
+  int depth = 0;
+  if (!nodes_.empty()) stack[depth++] = 0;
+  while (depth > 0) {
+    const Node& node = nodes_[stack[--depth]];
+    if (culled(node.centre, node.radius)) continue;
+    if (node.count == 0) {
+      stack[depth++] = node.first + 1;
+      stack[depth++] = node.first;
       continue;
     }
-    // The sight line to X(s) is eye + t (ea + s ab), t in (0, 1); it meets the plane at
-    // t = h / D(s) with D(s) = D0 + s D1 linear in s.
-    const double h = poly.offset - poly.normal.dot(eye);
-    if (h == 0.0) continue;  // the eye in the plane: the polygon is seen edge-on
-    const double d0 = poly.normal.dot(ea), d1 = poly.normal.dot(ab);
-    double cuts[3] = {0.0, 1.0, 1.0};
-    int pieces = 1;
-    if (d1 != 0.0) {
-      const double root = -d0 / d1;
-      if (root > 0.0 && root < 1.0) {
-        cuts[1] = root;
-        pieces = 2;
-      }
-    }
-    for (int k = 0; k < pieces; ++k) {
-      double lo = cuts[k], hi = cuts[k + 1];
-      const double d_mid = d0 + 0.5 * (lo + hi) * d1;
-      if (d_mid == 0.0) continue;
-      const double sigma = d_mid > 0.0 ? 1.0 : -1.0;
-      if (sigma * h <= 0.0) continue;  // the plane is behind the eye on this piece
-      // In front of X: h / D < 1 - margin.
-      Restrict(sigma * (h - (1.0 - kDepthMargin) * d0), -sigma * (1.0 - kDepthMargin) * d1, &lo, &hi);
-      // Inside every edge: m . Y <= c - margin, multiplied by D (sign sigma).
-      for (int e = poly.first_edge; e < poly.first_edge + poly.edge_count && lo < hi; ++e) {
-        const EdgePlane& edge = edges_[e];
-        const double g = edge.m.dot(eye) - edge.c + kInsideMargin;
-        Restrict(sigma * (g * d0 + h * edge.m.dot(ea)), sigma * (g * d1 + h * edge.m.dot(ab)), &lo, &hi);
-      }
-      if (lo < hi) parts->emplace_back(lo, hi);
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const Polygon& poly = polygons_[i];
+      if (!culled(poly.centre, poly.radius)) HiddenParts(poly, eye, ea, ab, parts);
     }
   }
   // The complement of the hidden intervals in [0, 1].

@@ -87,6 +87,22 @@ class Occluders {
     int first_edge;
     int edge_count;
   };
+  // A hierarchy of bounding spheres over the polygons (median splits of their centres along
+  // the widest axis, up to kLeafSize per leaf): a node whose sphere misses the sight triangle
+  // culls all its polygons at once, so a query costs about the logarithm of the scene's size
+  // and what the triangle meets (the street's thousands of surfaces).
+  struct Node {
+    Eigen::Vector3d centre;
+    double radius;
+    int first;  // leaf: polygons_[first, first + count); inner: children first and first + 1
+    int count;  // 0 for an inner node
+  };
+  // Fills nodes_[index] with polygons_[first, first + count), reordering them.
+  void Build(int index, int first, int count);
+  // The part of VisibleParts for one polygon: appends its hidden interval(s) of s to `hidden`.
+  void HiddenParts(const Polygon& poly, const Eigen::Vector3d& eye, const Eigen::Vector3d& ea,
+                   const Eigen::Vector3d& ab, std::vector<Eigen::Vector2d>* hidden) const;
+  std::vector<Node> nodes_;
   // In-plane unit outward normal m and offset c of one polygon edge: m . X <= c inside.
   struct EdgePlane {
     Eigen::Vector3d m;
