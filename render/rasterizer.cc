@@ -119,17 +119,49 @@ int ClipToNearPlane(const Eigen::Vector3d* in, int n, Eigen::Vector3d* out) {
 
 double SurfaceRasterizer::Shading(const Eigen::Vector3d& normal_world) { return 0.6 + 0.35 * normal_world.dot(kLight); }
 
-SurfaceRasterizer::SurfaceRasterizer(const std::vector<Surface>& surfaces) : surfaces_(surfaces) {}
+SurfaceRasterizer::SurfaceRasterizer(const std::vector<Surface>& surfaces) : surfaces_(surfaces) {
+  bounds_.reserve(surfaces_.size());
+  for (const Surface& s : surfaces_) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& v : s.vertices) centre += v;
+    centre /= static_cast<double>(s.vertices.size());
+    double radius = 0.0;
+    for (const Eigen::Vector3d& v : s.vertices) radius = std::max(radius, (v - centre).norm());
+    bounds_.push_back({centre, radius});
+  }
+}
 
 void SurfaceRasterizer::Render(const PinholeCamera& camera, int width, int height, const Rigid3d& cam_from_world,
                                cv::Mat* radiance, cv::Mat* surface_ids) const {
-  // 1. Every surface facing the camera, cut at the near plane and projected.
-  std::vector<Projected> polygons;
-  polygons.reserve(surfaces_.size());
+  // The work buffers of this thread, kept between calls: a street's frame would otherwise
+  // allocate (and page in) megabytes per image.
+  thread_local std::vector<Projected> polygons;
+  thread_local std::vector<float> inverse_depth;
+  thread_local std::vector<unsigned char> mixed_mask;
+  thread_local cv::Mat ids;
+  polygons.clear();
+
+  // 1. Every surface facing the camera and within the field of view (its bounding sphere
+  // against the four planes through the eye and the image's borders, widened by a pixel), cut
+  // at the near plane and projected.
   const Eigen::Vector3d eye = cam_from_world.Center();
+  std::array<Eigen::Vector3d, 4> side_planes;  // camera frame, through the origin, inward normals
+  {
+    const double u0 = (-1.0 - camera.cx) / camera.fx, u1 = (width - camera.cx) / camera.fx;
+    const double v0 = (-1.0 - camera.cy) / camera.fy, v1 = (height - camera.cy) / camera.fy;
+    side_planes = {Eigen::Vector3d(1.0, 0.0, -u0).normalized(), Eigen::Vector3d(-1.0, 0.0, u1).normalized(),
+                   Eigen::Vector3d(0.0, 1.0, -v0).normalized(), Eigen::Vector3d(0.0, -1.0, v1).normalized()};
+  }
   std::array<Eigen::Vector3d, kMaxVertices> in_camera, clipped;
   for (std::size_t k = 0; k < surfaces_.size(); ++k) {
     const Surface& surface = surfaces_[k];
+    const Eigen::Vector3d centre = cam_from_world * bounds_[k].centre;
+    const double radius = bounds_[k].radius;
+    if (centre.z() + radius < kNearDepth || side_planes[0].dot(centre) < -radius ||
+        side_planes[1].dot(centre) < -radius || side_planes[2].dot(centre) < -radius ||
+        side_planes[3].dot(centre) < -radius) {
+      continue;
+    }
     const int n = static_cast<int>(std::min<std::size_t>(surface.vertices.size(), kMaxVertices - 1));
     Eigen::Vector3d normal = surface.normal;
     const double facing = normal.dot(eye - surface.vertices[0]);
@@ -193,8 +225,9 @@ void SurfaceRasterizer::Render(const PinholeCamera& camera, int width, int heigh
   }
 
   // 2. Scanline z-buffer of 1/z at pixel centres; ties keep the first surface.
-  cv::Mat ids(height, width, CV_32SC1, cv::Scalar(-1));
-  std::vector<float> inverse_depth(static_cast<std::size_t>(width) * height, 0.0f);
+  ids.create(height, width, CV_32SC1);
+  ids.setTo(-1);
+  inverse_depth.assign(static_cast<std::size_t>(width) * height, 0.0f);
   for (std::size_t k = 0; k < polygons.size(); ++k) {
     const Projected& p = polygons[k];
     double v_min = std::numeric_limits<double>::infinity(), v_max = -v_min;
@@ -287,7 +320,7 @@ void SurfaceRasterizer::Render(const PinholeCamera& camera, int width, int heigh
 
   // 4. Anti-aliasing where the 3x3 neighbourhood sees more than one surface: first mark both
   // pixels of every 8-connected pair that differ.
-  std::vector<unsigned char> mixed_mask(static_cast<std::size_t>(width) * height, 0);
+  mixed_mask.assign(static_cast<std::size_t>(width) * height, 0);
   for (int y = 0; y < height; ++y) {
     const int* row = ids.ptr<int>(y);
     const int* below = y + 1 < height ? ids.ptr<int>(y + 1) : nullptr;

@@ -42,6 +42,12 @@ class SurfaceRasterizer {
 
  private:
   const std::vector<Surface>& surfaces_;
+  // Per surface, the bounding sphere of its vertices (world): the field-of-view test.
+  struct Bounds {
+    Eigen::Vector3d centre;
+    double radius;
+  };
+  std::vector<Bounds> bounds_;
   TextureBank textures_;
 };
 
