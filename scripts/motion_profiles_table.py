@@ -46,10 +46,22 @@ def cpu_model():
 
 
 def lost_frames(log_path):
-    """Frames whose status is not `tracking` in a --log CSV (track or track_images)."""
+    """Frames whose status is `degraded` or `lost` in a --log CSV (track or track_images), and
+    the frame count."""
     with open(log_path) as f:
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
-    return sum(1 for row in rows if row.get("status", "tracking") != "tracking"), len(rows)
+    return sum(1 for row in rows if row["status"] in ("degraded", "lost")), len(rows)
+
+
+def path_length(tum_path):
+    """Length of the polyline of a TUM trajectory's positions (m)."""
+    points = []
+    with open(tum_path) as f:
+        for line in f:
+            fields = line.split()
+            if fields and not fields[0].startswith("#"):
+                points.append(tuple(float(v) for v in fields[1:4]))
+    return sum(sum((a - b) ** 2 for a, b in zip(p, q)) ** 0.5 for p, q in zip(points, points[1:]))
 
 
 def evaluate(build, gt, est):
@@ -57,9 +69,6 @@ def evaluate(build, gt, est):
     return metrics
 
 
-def percent(metrics, key):
-    length = metrics["path_length_m"]
-    return 100.0 * metrics[key] / length if length > 0 else float("nan")
 
 
 def main():
@@ -84,6 +93,7 @@ def main():
         run([os.path.join(bin_dir, "simulate"), name, "--out", folder, "--images"], cwd=ROOT)
         print("%s: rendered in %.0f s" % (name, time.time() - started), file=sys.stderr)
         gt = os.path.join(folder, "gt.tum")
+        length = path_length(gt)
         for method in methods:
             for source in ("observations", "images"):
                 stem = os.path.join(folder, "%s_%s" % (method, source))
@@ -98,10 +108,10 @@ def main():
                 metrics = evaluate(build, gt, stem + ".tum")
                 not_tracking, frames = lost_frames(stem + ".csv")
                 rows.append({"sequence": name, "method": method, "input": source,
-                             "frames": frames, "path_length_m": metrics["path_length_m"],
-                             "ate_pct": percent(metrics, "ate_trans_rmse_m"),
-                             "max_error_pct": percent(metrics, "ate_trans_max_m"),
-                             "ate_rot_deg": metrics["ate_rot_rmse_deg"],
+                             "frames": frames, "path_length_m": length,
+                             "ate_pct": 100.0 * metrics["ate_trans_m"]["rmse"] / length,
+                             "max_error_pct": 100.0 * metrics["ate_trans_m"]["max"] / length,
+                             "ate_rot_deg": metrics["ate_rot_deg"]["rmse"],
                              "not_tracking_frames": not_tracking, "seconds": seconds})
                 print("%s %s %s: ATE %.2f %% of the path, largest %.2f %%, %d frames not tracking (%.0f s)"
                       % (name, method, source, rows[-1]["ate_pct"], rows[-1]["max_error_pct"], not_tracking, seconds),
