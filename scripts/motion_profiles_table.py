@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Every registered tracker on the simulator's real-motion sequences (docs/simulation.md,
-"Motion profiles"): the street driven by the car profile, the room flown by the mav profile and
-the room carried by the handheld profile. Each sequence is rendered once (`simulate NAME --images`)
+"Motion profiles"): the street driven by the car profile (from a straight at speed, and starting
+inside the turn), the room flown by the mav profile and the room carried by the handheld profile. Each sequence is rendered once (`simulate NAME --images`)
 and tracked two ways with default options: `track` on its noise-free observations (seq.json) and
 `track_images` on its pictures. Errors are `evaluate`'s, with alignment none (world = the first
 left camera), as percentages of the ground-truth path.
@@ -23,7 +23,7 @@ import sys
 import tempfile
 import time
 
-SEQUENCES = ["street", "room_mav_752x480", "room_handheld_752x480"]
+SEQUENCES = ["street", "street_turn_start", "room_mav_752x480", "room_handheld_752x480"]
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "simulator/motion.h"
 
@@ -156,23 +157,29 @@ double DistanceToPolygon(const Eigen::Vector3d& x, const Surface& s) {
 }
 
 TEST(Scene, TheCarProfileDrivesThroughTheStreetClearOfEverything) {
-  // The default car route in the default street: the camera's centre at every frame keeps
-  // 1.3 m from every surface (a car's half width and more), the road's 1.65 m below aside.
-  SceneConfig c;
-  c.type = SceneType::kStreet;
-  const Scene scene = MakeScene(c, 1);
-  MotionConfig motion;
-  motion.profile = MotionProfile::kCar;
-  const Trajectory t = MakeTrajectory(motion, 200, 10.0, 1);
-  double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < t.size(); k += 2) {
-    const Eigen::Vector3d centre = t[k].world_from_cam.translation;
-    for (const Surface& s : scene.surfaces) {
-      if (s.normal.y() < -0.99 && s.vertices[0].y() >= c.street.camera_height_m - 0.01) continue;  // the road
-      nearest = std::min(nearest, DistanceToPolygon(centre, s));
+  // The default car route in the default street, and the route that starts in the turn of a
+  // crossing 20 m ahead (frontend/configs/street_turn_start.json): the camera's centre at every
+  // frame keeps 1.3 m from every surface (a car's half width and more), the road's 1.65 m below
+  // aside.
+  for (const auto& [crossing_at_m, straight_m] : {std::pair{50.0, 31.25}, std::pair{20.0, 1.25}}) {
+    SceneConfig c;
+    c.type = SceneType::kStreet;
+    c.street.crossing_at_m = crossing_at_m;
+    const Scene scene = MakeScene(c, 1);
+    MotionConfig motion;
+    motion.profile = MotionProfile::kCar;
+    motion.car.straight_m = straight_m;
+    const Trajectory t = MakeTrajectory(motion, 200, 10.0, 1);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < t.size(); k += 2) {
+      const Eigen::Vector3d centre = t[k].world_from_cam.translation;
+      for (const Surface& s : scene.surfaces) {
+        if (s.normal.y() < -0.99 && s.vertices[0].y() >= c.street.camera_height_m - 0.01) continue;  // the road
+        nearest = std::min(nearest, DistanceToPolygon(centre, s));
+      }
     }
+    EXPECT_GT(nearest, 1.3) << "crossing at " << crossing_at_m << " m";
   }
-  EXPECT_GT(nearest, 1.3);
 }
 
 }  // namespace

@@ -565,7 +565,7 @@ TEST_F(EndToEnd, ErrorsAreOneLineAndNameTheProblem) {
   EXPECT_EQ(r.exit_code, 1);
   ExpectOneErrorLine(r.output, "simulate");
   EXPECT_NE(r.output.find("simulation config 'no_such_scene' not found"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("available: corridor_640x480, paper_640x480, room_752x480, room_ci_640x480, room_handheld_752x480, room_mav_752x480, street\n"),
+  EXPECT_NE(r.output.find("available: corridor_640x480, paper_640x480, room_752x480, room_ci_640x480, room_handheld_752x480, room_mav_752x480, street, street_turn_start\n"),
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(Path("scene")));
